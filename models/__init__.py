@@ -1,0 +1,47 @@
+"""Bodies rolling on a plane, as sympy expressions ready for heyoka.
+
+>>> from models import get_model
+>>> disk = get_model("disk")                 # derived equations
+>>> printed = get_model("disk", "paper")     # the paper's Eq. 18 as printed
+
+See :mod:`models.symbols` for the conventions (3-1-3 Euler angles, paper Fig. 1).
+"""
+from __future__ import annotations
+
+from . import disk, effective, gyroscope, hurricane, ring, sliding_disk
+from .base import Model
+from .symbols import STATE_NAMES
+
+_BUILDERS = {
+    "disk": (disk.model, ("derived", "paper")),
+    "ring": (ring.model, ("derived", "paper")),
+    "hurricane": (hurricane.model, ("derived", "paper")),
+    "sliding-disk": (sliding_disk.model, ("derived",)),
+    "gyroscope": (gyroscope.model, ("derived", "paper")),
+    "effective": (effective.model, ("derived",)),
+}
+
+MODEL_NAMES = tuple(_BUILDERS)
+
+
+def sources(name: str) -> tuple:
+    """The equation sources a model has ('derived', and 'paper' where transcribed)."""
+    _check_name(name)
+    return _BUILDERS[name][1]
+
+
+def get_model(name: str, equations: str = "derived") -> Model:
+    """The model called ``name`` with equations from ``equations`` ('derived' or 'paper')."""
+    _check_name(name)
+    builder, allowed = _BUILDERS[name]
+    if equations not in allowed:
+        raise ValueError(f"equations={equations!r} for model {name!r}; allowed: {', '.join(allowed)}")
+    return builder(equations)
+
+
+def _check_name(name: str) -> None:
+    if name not in _BUILDERS:
+        raise ValueError(f"unknown model {name!r}; allowed: {', '.join(MODEL_NAMES)}")
+
+
+__all__ = ["Model", "MODEL_NAMES", "STATE_NAMES", "get_model", "sources"]

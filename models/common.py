@@ -1,0 +1,24 @@
+"""Parameters shared by every model."""
+import sympy as sp
+
+from .base import Parameter
+from .symbols import g
+
+GRAVITY = Parameter(
+    "g", g, sp.Integer(980),
+    "g/L in s^-2, L = R (disk, ring) or a (hurricane balls); 980 is g with L = 1 cm",
+    lower=0.0,
+)
+
+
+def inertia_parameters(I1_default, I3_default, what: str):
+    I1 = sp.Symbol("I1", positive=True)
+    I3 = sp.Symbol("I3", positive=True)
+    return (
+        Parameter("I1", I1, I1_default, f"transverse moment of inertia about C in units of {what}", lower=0.0),
+        Parameter("I3", I3, I3_default, f"axial moment of inertia about C in units of {what}", lower=0.0),
+    )
+
+
+#: I3 <= 2 I1 holds for any body of revolution (2 I1 - I3 = 2 sum m z^2 >= 0).
+AXIAL_BOUND = ("I3 <= 2 I1 (any body of revolution: 2 I1 - I3 = 2 sum m z^2 >= 0)", lambda p: p["I3"] <= 2 * p["I1"])

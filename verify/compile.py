@@ -1,0 +1,77 @@
+"""From a model's sympy expressions to heyoka: the system, its events and its cfuncs.
+
+Parameters become runtime ``par[i]`` in the model's parameter order, so one compiled
+integrator serves a whole sweep.  Compiled objects are cached per (model, precision);
+heyoka itself caches the machine code in memory and on disk.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import heyoka as hy
+import sympy as sp
+
+from models.base import Model
+from models.symbols import STATE, STATE_NAMES, theta
+
+from .precision import Precision
+
+
+def to_heyoka(expr: sp.Expr, mapping: dict):
+    """Convert a sympy expression, refusing constants heyoka would round to double."""
+    for atom in sp.preorder_traversal(expr):
+        if isinstance(atom, sp.Rational) and not atom.is_Integer and atom.q & (atom.q - 1):
+            raise ValueError(f"the constant {atom} would be rounded to double; keep it as a parameter")
+        if isinstance(atom, sp.Float):
+            raise ValueError(f"the float constant {atom} would be rounded to double; use exact numbers")
+    return hy.from_sympy(sp.sympify(expr), mapping)
+
+
+@dataclass(frozen=True)
+class CompiledModel:
+    """A model's heyoka system at one precision."""
+
+    model: Model
+    precision: Precision
+    variables: tuple  # heyoka variables in STATE_NAMES order
+    system: tuple  # (variable, rhs) pairs
+    events: tuple  # (name, heyoka expression, heyoka direction)
+    invariant_function: object  # cfunc: state -> [closed-form invariants..., normal force?, omega2?, omega3?]
+    has_normal_force: bool
+
+    @property
+    def n_invariants(self) -> int:
+        return len(self.model.invariants)
+
+    def t_events(self):
+        """Fresh terminal heyoka events for a new integrator."""
+        return [hy.t_event(ex, direction=d, fp_type=self.precision.fp_type) for _, ex, d in self.events]
+
+
+def symbol_map(model: Model, variables) -> dict:
+    mapping = dict(zip(STATE, variables))
+    mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
+    return mapping
+
+
+@lru_cache(maxsize=None)
+def compile_model(model: Model, precision: Precision) -> CompiledModel:
+    variables = tuple(hy.make_vars(*STATE_NAMES))
+    mapping = symbol_map(model, variables)
+    system = tuple((mapping[v], to_heyoka(rhs, mapping)) for v, rhs in model.rhs())
+    th = mapping[theta]
+    dom = model.domain
+    events = [
+        (dom.below, th - to_heyoka(dom.theta_min, mapping), hy.event_direction.negative),
+        (dom.above, th - to_heyoka(dom.theta_max, mapping), hy.event_direction.positive),
+    ]
+    outputs = [to_heyoka(inv.expr, mapping) for inv in model.invariants]
+    if model.normal_force is not None:
+        normal = to_heyoka(model.normal_force, mapping)
+        events.append(("contact_lost", normal, hy.event_direction.negative))
+        outputs.append(normal)
+    if model.chaplygin is not None:
+        outputs += [to_heyoka(r, mapping) for r in model.chaplygin.rates]
+    cf = hy.cfunc(outputs, list(variables), **precision.integrator_kwargs())
+    return CompiledModel(model, precision, variables, system, tuple(events), cf, model.normal_force is not None)
