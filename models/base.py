@@ -40,9 +40,10 @@ class Parameter:
         hi = "+inf)" if self.upper is None else f"{self.upper:g}" + ("]" if self.upper_inclusive else ")")
         return f"{lo}, {hi}"
 
-    def check(self, value) -> None:
+    def check(self, value, shown=None) -> None:
         """Raise ``ValueError`` naming the value if it is not finite or out of range."""
         v = float(value)
+        value = value if shown is None else shown
         if not math.isfinite(v):
             raise ValueError(f"parameter {self.name}={value} is not a finite number")
         bad_lo = self.lower is not None and (v < self.lower or (v == self.lower and not self.lower_inclusive))

@@ -67,6 +67,7 @@ class Trajectory:
     equations: str
     precision: Precision
     params: dict
+    t_end: object
     t: np.ndarray
     y: np.ndarray
     status: int
@@ -106,7 +107,7 @@ def resolve_parameters(model: Model, values, precision: Precision) -> dict:
             val = precision.number(raw)
         except (ValueError, TypeError) as err:
             raise ValueError(f"parameter {p.name}={raw!r}: {err}") from None
-        p.check(val)
+        p.check(val, shown=raw)
         out[p.name] = val
     model.check_relations(out)
     return out
@@ -282,7 +283,7 @@ def solve(
     values, normal = inv.evaluate(compiled, y, pars)
     traces = inv.traces(compiled, values, y[:, 0], pars)
     return Trajectory(
-        model=model.name, equations=model.equations, precision=prec, params=pars, t=t, y=y,
+        model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
         status=status, message=message, outcome=label, t_events=t_events, steps=steps, tol=ta.tol,
         invariants=traces, normal_force=normal,
     )

@@ -140,8 +140,9 @@ def fundamental_matrices(model: Model, precision: Precision, params: dict, theta
     """Phi(theta) with Phi(theta_ref) = identity, for each theta, as (p11, p12, p21, p22)."""
     ref = precision.number(model.chaplygin.theta_ref)
     one, zero = precision.number(1), precision.number(0)
-    pars = precision.array(params.values())
-    order = sorted(range(len(thetas)), key=cmp_to_key(lambda i, j: (thetas[i] > thetas[j]) - (thetas[i] < thetas[j])))
+    used = [i for i, p in enumerate(model.parameters) if model.chaplygin.matrix.has(p.symbol)]
+    pars = precision.array(list(params.values())[: max(used) + 1 if used else 0])
+    order = sorted(range(len(thetas)), key=cmp_to_key(lambda i, j: int(bool(thetas[i] > thetas[j])) - int(bool(thetas[i] < thetas[j]))))
     found = [None] * len(thetas)
     for side in (1, -1):
         idx = [i for i in order if (thetas[i] > ref if side > 0 else thetas[i] < ref)]

@@ -1,0 +1,31 @@
+# The two entry points: `make report` and `make test`.  Both create the virtual
+# environment in .venv when it is missing and install the project into it.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+export HEYOKA_CACHE_DIR ?= $(CURDIR)/.heyoka-cache
+export MPLBACKEND := Agg
+
+.PHONY: report test test-all bench clean
+
+$(STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[test]'
+	touch $(STAMP)
+
+report: $(STAMP)
+	$(PY) -m verify report
+
+test: $(STAMP)
+	$(PY) -m pytest -q
+
+test-all: $(STAMP)
+	$(PY) -m pytest -q -m ''
+
+bench: $(STAMP)
+	$(PY) benchmarks/bench_trajectory.py
+
+clean:
+	rm -rf $(VENV) .heyoka-cache .pytest_cache

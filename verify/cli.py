@@ -1,0 +1,156 @@
+"""Command line: ``python -m verify {trajectory,models,report} ...``.
+
+Bad input exits with status 2 and one line on stderr naming the bad value and what is
+allowed; a failed integration exits with status 1.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from models import MODEL_NAMES, get_model, sources
+from models.symbols import STATE_NAMES
+
+from .integrate import IntegrationError, solve
+from .precision import ALLOWED, parse_precision
+
+
+class UsageError(Exception):
+    """Bad input on the command line (exit status 2)."""
+
+
+def _pairs(items, what: str) -> dict:
+    out = {}
+    for item in items or []:
+        name, sep, value = item.partition("=")
+        if not sep or not name.strip():
+            raise UsageError(f"--{what} {item!r} is not NAME=VALUE")
+        if name.strip() in out:
+            raise UsageError(f"--{what} {name.strip()} is given twice")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def trajectory_record(sol) -> dict:
+    """The JSON object of ``python -m verify trajectory --format json``."""
+    p = sol.precision
+    return {
+        "model": sol.model,
+        "equations": sol.equations,
+        "precision": p.name,
+        "params": {k: p.to_json(v) for k, v in sol.params.items()},
+        "t_end": p.to_json(sol.t_end),
+        "outcome": sol.outcome,
+        "t": p.to_json(sol.t[-1]),
+        "steps": sol.steps,
+        "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
+        "invariants": {
+            name: {"initial": p.to_json(tr.initial), "final": p.to_json(tr.final), "max_rel_drift": tr.max_rel_drift}
+            for name, tr in sol.invariants.items()
+        },
+    }
+
+
+def _text(record: dict) -> str:
+    lines = [
+        f"model       {record['model']} ({record['equations']} equations), precision {record['precision']}",
+        "params      " + ", ".join(f"{k}={v}" for k, v in record["params"].items()),
+        f"outcome     {record['outcome']} at t = {record['t']} after {record['steps']} steps",
+        "state",
+    ]
+    lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
+    lines.append("invariants  (initial, final, max relative drift)")
+    lines += [f"  {n:<12} {v['initial']}  {v['final']}  {v['max_rel_drift']:.3e}" for n, v in record["invariants"].items()]
+    return "\n".join(lines)
+
+
+def cmd_trajectory(args) -> int:
+    try:
+        precision = parse_precision(args.precision)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    if args.model not in MODEL_NAMES:
+        raise UsageError(f"unknown model {args.model!r}; allowed: {', '.join(MODEL_NAMES)}")
+    if args.equations not in sources(args.model):
+        raise UsageError(f"--equations {args.equations} for model {args.model!r}; allowed: {', '.join(sources(args.model))}")
+    try:
+        sol = solve(
+            args.model, args.t_end, _pairs(args.state, "state"), _pairs(args.param, "param"),
+            precision=precision, equations=args.equations, tol=args.tol,
+        )
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    record = trajectory_record(sol)
+    print(json.dumps(record, indent=2) if args.format == "json" else _text(record))
+    return 0
+
+
+def cmd_models(args) -> int:
+    records = []
+    for name in MODEL_NAMES:
+        m = get_model(name)
+        records.append({
+            "model": name,
+            "title": m.title,
+            "equations": list(sources(name)),
+            "parameters": {p.name: {"default": str(p.default), "range": p.allowed(), "description": p.description}
+                           for p in m.parameters},
+            "domain": f"{m.domain.theta_min} < theta < {m.domain.theta_max}",
+            "invariants": list(m.invariant_names()),
+            "energy_unit": m.units,
+        })
+    if args.format == "json":
+        print(json.dumps(records, indent=2))
+        return 0
+    for r in records:
+        print(f"{r['model']}: {r['title']} (equations: {', '.join(r['equations'])})")
+        for pname, p in r["parameters"].items():
+            print(f"    {pname:<3} default {p['default']:<28} range {p['range']:<12} {p['description']}")
+        print(f"    domain {r['domain']}; invariants: {', '.join(r['invariants'])}; energy per {r['energy_unit']}")
+    return 0
+
+
+def cmd_report(args) -> int:
+    from .conservation import write_report
+
+    write_report(args.out)
+    return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="python -m verify", description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    t = sub.add_parser("trajectory", help="integrate one model from one state")
+    t.add_argument("model", help=f"one of: {', '.join(MODEL_NAMES)}")
+    t.add_argument("--equations", default="derived", help="derived (default) or paper")
+    t.add_argument("--param", action="append", metavar="NAME=VALUE", help="a parameter (repeatable)")
+    t.add_argument("--state", action="append", metavar="NAME=VALUE",
+                   help=f"an initial value, unset ones are 0 (names: {', '.join(STATE_NAMES)})")
+    t.add_argument("--t-end", required=True, help="final time in seconds")
+    t.add_argument("--precision", default="double", help=ALLOWED)
+    t.add_argument("--tol", default=None, help="Taylor tolerance (default: the precision's epsilon)")
+    t.add_argument("--format", choices=("json", "text"), default="text")
+    t.set_defaults(run=cmd_trajectory)
+
+    m = sub.add_parser("models", help="list the models, their parameters and invariants")
+    m.add_argument("--format", choices=("json", "text"), default="text")
+    m.set_defaults(run=cmd_models)
+
+    r = sub.add_parser("report", help="run the verification and write reports/")
+    r.add_argument("--out", default="reports", help="output folder (default: reports)")
+    r.set_defaults(run=cmd_report)
+    return ap
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        return args.run(args)
+    except UsageError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 2
+    except IntegrationError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return 1
