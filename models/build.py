@@ -68,7 +68,7 @@ def solve_rows(rows) -> tuple:
     solution = sp.solve(list(rows), list(ACCELERATIONS), dict=True)
     if len(solution) != 1:
         raise RuntimeError("the rows do not determine the accelerations uniquely")
-    return tuple(sp.simplify(solution[0][q]) for q in ACCELERATIONS)
+    return tuple(sp.factor_terms(sp.cancel(solution[0][q])) for q in ACCELERATIONS)
 
 
 def paper_variant(derived: Model, rows, source: str, I1, I3, r2, r3, contact="rolling") -> Model:
@@ -79,5 +79,5 @@ def paper_variant(derived: Model, rows, source: str, I1, I3, r2, r3, contact="ro
     """
     acc = solve_rows(rows)
     d = derive(I1, I3, r2, r3, contact)
-    normal = sp.simplify(1 + d.vertical_acceleration.subs(dict(zip(ACCELERATIONS, acc))) / g)
+    normal = sp.cancel(1 + d.vertical_acceleration.subs(dict(zip(ACCELERATIONS, acc))) / g)
     return replace(derived, equations="paper", source=source, accelerations=acc, normal_force=normal)

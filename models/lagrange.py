@@ -21,12 +21,12 @@ def euler_lagrange(L: sp.Expr, coordinates) -> tuple:
     rows, momenta = [], {}
     for q, qd, _ in coordinates:
         p = sp.diff(L, qd)
-        momenta[q] = sp.simplify(p)
+        momenta[q] = sp.factor_terms(sp.cancel(p))
         rows.append(sp.expand(time_derivative(p) - sp.diff(L, q)))
     unknowns = [qdd for _, _, qdd in coordinates]
     solution = sp.solve(rows, unknowns, dict=True)
     if len(solution) != 1:
         raise RuntimeError("the Lagrangian is degenerate: no unique accelerations")
-    acc = {q: sp.simplify(solution[0][q]) for q in unknowns}
-    energy = sp.simplify(sum(qd * sp.diff(L, qd) for _, qd, _ in coordinates) - L)
+    acc = {q: sp.factor_terms(sp.cancel(solution[0][q])) for q in unknowns}
+    energy = sp.expand(sum(qd * sp.diff(L, qd) for _, qd, _ in coordinates) - L)
     return acc, energy, momenta

@@ -39,21 +39,29 @@ def eq18_rows(k) -> sp.Matrix:
     return lhs - rhs
 
 
-def eq50_rows(I1, I3, h) -> sp.Matrix:
-    """Eq. 50: the thick ring or coin; the middle (explicit) LHS equated to the RHS."""
-    lhs = sp.Matrix([
+def eq50_middle_lhs(I1, I3, h) -> sp.Matrix:
+    """Eq. 50, the middle (explicit) form of the LHS."""
+    return sp.Matrix([
         (I1 + 1 + h**2) * thetaddot,
         (I1 + h**2) * (phiddot * s + phidot * c * thetadot) - h * (psiddot + phiddot * c - phidot * s * thetadot),
         (I3 + 1) * (psiddot + phiddot * c - phidot * s * thetadot) - h * (phiddot * s + phidot * c * thetadot),
     ])
-    rhs = sp.Matrix([
+
+
+def eq50_rhs(I1, I3, h) -> sp.Matrix:
+    """Eq. 50, the RHS."""
+    return sp.Matrix([
         -phidot * psidot * ((1 + I3) * s + h * c)
         - phidot**2 * (s * c * (1 + I3 - I1 - h**2) + h * sp.cos(2 * theta))
         - g * (c - h * s),
         thetadot * (psidot * I3 + phidot * ((I3 - I1 - h**2) * c - h * s)),
         phidot * thetadot * (s + h * c),
     ])
-    return lhs - rhs
+
+
+def eq50_rows(I1, I3, h) -> sp.Matrix:
+    """Eq. 50: the thick ring or coin; the middle (explicit) LHS equated to the RHS."""
+    return eq50_middle_lhs(I1, I3, h) - eq50_rhs(I1, I3, h)
 
 
 def eq50_omega_lhs(I1, I3, h) -> sp.Matrix:

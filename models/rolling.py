@@ -49,7 +49,9 @@ class Derivation:
 
 
 def _simplify(expr):
-    return sp.simplify(sp.cancel(expr))
+    # Rational simplification only: trigonometric simplification costs seconds per
+    # body and buys heyoka nothing.
+    return sp.factor_terms(sp.cancel(sp.together(expr)))
 
 
 @lru_cache(maxsize=None)
@@ -114,10 +116,10 @@ def _chaplygin_matrix(w, wdot, on_shell) -> sp.Matrix:
     s, c = sp.sin(theta), sp.cos(theta)
     rates = {phidot: w2 / s, psidot: w3 - w2 * c / s}
     per_dtheta = [sp.cancel(wdot[i].subs(on_shell) / thetadot) for i in (1, 2)]
-    per_dtheta = [sp.simplify(e.subs(rates)) for e in per_dtheta]
-    A = sp.Matrix(2, 2, lambda i, j: sp.simplify(sp.diff(per_dtheta[i], (w2, w3)[j])))
+    per_dtheta = [sp.cancel(e.subs(rates)) for e in per_dtheta]
+    A = sp.Matrix(2, 2, lambda i, j: _simplify(sp.diff(per_dtheta[i], (w2, w3)[j])))
     for i in range(2):
-        rest = sp.simplify(per_dtheta[i] - A[i, 0] * w2 - A[i, 1] * w3)
+        rest = sp.simplify(sp.cancel(per_dtheta[i] - A[i, 0] * w2 - A[i, 1] * w3))
         if rest != 0 or A[i, :].has(thetadot, w2, w3, phidot, psidot):
             raise RuntimeError("the rows without thetaddot are not linear in (omega2, omega3)")
     return A

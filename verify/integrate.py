@@ -281,7 +281,7 @@ def solve(
     y = np.ascontiguousarray(np.array(states).T)
 
     values, normal = inv.evaluate(compiled, y, pars)
-    traces = inv.traces(compiled, values, y[:, 0], pars)
+    traces = inv.traces(compiled, values, y, pars)
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
         status=status, message=message, outcome=label, t_events=t_events, steps=steps, tol=ta.tol,

@@ -27,9 +27,11 @@ from .precision import Precision
 class InvariantTrace:
     """One conserved quantity along a run.
 
-    ``max_rel_drift`` is max_t |I(t) - I(0)| / scale, with scale the sum of the absolute
-    values of the terms of I at t = 0 (so it stays meaningful when I(0) is near zero); if
-    that scale is zero the drift is absolute and ``scale`` is reported as 0.
+    ``max_rel_drift`` is max_t |I(t) - I(0)| / scale, with scale the largest value along
+    the run of the sum of the absolute values of the terms of I (so it stays meaningful
+    when I is near zero, and measures drift against the magnitudes actually rounded); for
+    Chaplygin's integrals the scale is |c1(0)| + |c2(0)|.  If the scale is zero the drift
+    is absolute and ``scale`` is reported as 0.
     """
 
     name: str
@@ -52,13 +54,16 @@ def trace(name: str, values: np.ndarray, scale: float) -> InvariantTrace:
     return InvariantTrace(name, values, scale, worst / scale if scale > 0 else worst)
 
 
-def scale_at(model: Model, inv_scale: sp.Expr, state: np.ndarray, params: dict, precision: Precision) -> float:
-    """Evaluate a scale expression (it holds Abs, which heyoka lacks) with mpmath."""
-    subs = {s: precision.to_mpf(v) for s, v in zip(STATE, state)}
-    subs.update({p.symbol: precision.to_mpf(params[p.name]) for p in model.parameters})
-    f = sp.lambdify(list(subs), inv_scale, modules="mpmath")
-    with mpmath.workprec(precision.bits + 16):
-        return float(f(*subs.values()))
+def scale_over(model: Model, inv_scale: sp.Expr, y: np.ndarray, params: dict) -> float:
+    """The largest value of a scale expression along the run (in double: it is a magnitude).
+
+    The rounding error of an invariant is relative to the magnitude of its terms, which
+    can grow far above their initial size during a run (a disk near flat spins fast).
+    """
+    symbols = list(STATE) + [p.symbol for p in model.parameters]
+    f = sp.lambdify(symbols, inv_scale, modules="math")
+    pars = [float(params[p.name]) for p in model.parameters]
+    return max(f(*[float(v) for v in col], *pars) for col in y.T)
 
 
 def evaluate(compiled: CompiledModel, y: np.ndarray, params: dict) -> dict:
@@ -79,11 +84,11 @@ def evaluate(compiled: CompiledModel, y: np.ndarray, params: dict) -> dict:
     return result, normal
 
 
-def traces(compiled: CompiledModel, values: dict, y0: np.ndarray, params: dict) -> dict:
-    model, precision = compiled.model, compiled.precision
+def traces(compiled: CompiledModel, values: dict, y: np.ndarray, params: dict) -> dict:
+    model = compiled.model
     out = {}
     for inv in model.invariants:
-        out[inv.name] = trace(inv.name, values[inv.name], scale_at(model, inv.scale, y0, params, precision))
+        out[inv.name] = trace(inv.name, values[inv.name], scale_over(model, inv.scale, y, params))
     if model.chaplygin is not None:
         c1, c2 = values["chaplygin_1"], values["chaplygin_2"]
         scale = abs(float(c1[0])) + abs(float(c2[0]))
