@@ -39,6 +39,14 @@ class CompiledModel:
     events: tuple  # (name, heyoka expression, heyoka direction)
     invariant_function: object  # cfunc: state -> [closed-form invariants..., normal force?, omega2?, omega3?]
     has_normal_force: bool
+    n_pars_system: int  # heyoka wants exactly as many parameter values as the highest par[i] used
+    n_pars_function: int
+
+    def system_pars(self, values):
+        return values[: self.n_pars_system]
+
+    def function_pars(self, values):
+        return values[: self.n_pars_function]
 
     @property
     def n_invariants(self) -> int:
@@ -74,4 +82,15 @@ def compile_model(model: Model, precision: Precision) -> CompiledModel:
     if model.chaplygin is not None:
         outputs += [to_heyoka(r, mapping) for r in model.chaplygin.rates]
     cf = hy.cfunc(outputs, list(variables), **precision.integrator_kwargs())
-    return CompiledModel(model, precision, variables, system, tuple(events), cf, model.normal_force is not None)
+    system_exprs = [rhs for _, rhs in model.rhs()] + [model.domain.theta_min, model.domain.theta_max]
+    function_exprs = [i.expr for i in model.invariants] + list(model.chaplygin.rates if model.chaplygin else [])
+    if model.normal_force is not None:
+        system_exprs.append(model.normal_force)
+        function_exprs.append(model.normal_force)
+    return CompiledModel(model, precision, variables, system, tuple(events), cf, model.normal_force is not None,
+                         _n_pars(model, system_exprs), _n_pars(model, function_exprs))
+
+
+def _n_pars(model: Model, exprs) -> int:
+    used = [i for i, p in enumerate(model.parameters) if any(sp.sympify(e).has(p.symbol) for e in exprs)]
+    return max(used) + 1 if used else 0

@@ -259,7 +259,7 @@ def solve(
         )
 
     ta = hy.taylor_adaptive(
-        list(compiled.system), y0, pars=prec.array(pars.values()), tol=tol_value,
+        list(compiled.system), y0, pars=compiled.system_pars(prec.array(pars.values())), tol=tol_value,
         t_events=compiled.t_events() if events else [], **prec.integrator_kwargs(),
     )
     rebaser = _Rebaser(prec)

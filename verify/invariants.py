@@ -70,7 +70,7 @@ def evaluate(compiled: CompiledModel, y: np.ndarray, params: dict) -> dict:
     """Closed-form invariants, the normal force and Chaplygin's integrals at every column of y."""
     model, precision = compiled.model, compiled.precision
     n = y.shape[1]
-    pars = np.ascontiguousarray(np.repeat(precision.array(params.values())[:, None], n, axis=1))
+    pars = np.ascontiguousarray(np.repeat(compiled.function_pars(precision.array(params.values()))[:, None], n, axis=1))
     out = compiled.invariant_function(np.ascontiguousarray(y), pars=pars)
     result = {inv.name: out[i] for i, inv in enumerate(model.invariants)}
     j = compiled.n_invariants

@@ -1,0 +1,70 @@
+"""Chaplygin's integrals two ways, and the hurricane balls' closed forms against them."""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import mpmath
+import pytest
+import sympy as sp
+
+from models import get_model, hurricane
+from models.base import ChaplyginSystem
+from models.rolling import derive
+from models.symbols import omega_body
+from verify.invariants import chaplygin_integrals, fundamental_matrices
+from verify.integrate import resolve_parameters
+from verify.precision import parse_precision
+
+
+@pytest.mark.parametrize("k", ["0.25", "0.5", "0.1"])
+def test_disk_closed_form_equals_fundamental_matrix(k):
+    """Legendre functions (mpmath 2F1) against heyoka's integration of the linear ODE, in quad."""
+    p = parse_precision("quad")
+    model = get_model("disk")
+    params = resolve_parameters(model, {"k": k}, p)
+    thetas = [p.number(t) for t in ("0.05", "0.4", "1.0", "1.5707963", "2.2", "3.0")]
+    w2 = p.array(["1.7", "-3.0", "0.2", "5.0", "-1.1", "2.5"])
+    w3 = p.array(["0.3", "2.0", "-4.0", "1.0", "0.9", "-0.6"])
+    a1, a2 = chaplygin_integrals(model, p, params, thetas, w2, w3, method="closed-form")
+    b1, b2 = chaplygin_integrals(model, p, params, thetas, w2, w3, method="fundamental-matrix")
+    for x, y in list(zip(a1, b1)) + list(zip(a2, b2)):
+        # 1e-30: both routes work at quad (eps 1.9e-34); the transport near theta = 0.05
+        # integrates through cot(theta) ~ 20, costing up to three digits.
+        assert abs(float(x - y)) <= 1e-30 * (1 + abs(float(y)))
+
+
+def test_closed_form_detects_a_wrong_k():
+    """Negative control: the closed form with k = 0.26 disagrees with the transport at k = 0.25."""
+    p = parse_precision("double")
+    model = get_model("disk")
+    good, bad = resolve_parameters(model, {}, p), resolve_parameters(model, {"k": "0.26"}, p)
+    th, w2, w3 = [p.number("0.5")], p.array(["1.0"]), p.array(["2.0"])
+    a = chaplygin_integrals(model, p, bad, th, w2, w3, method="closed-form")
+    b = chaplygin_integrals(model, p, good, th, w2, w3, method="fundamental-matrix")
+    assert abs(float(a[0][0] - b[0][0])) > 1e-4
+
+
+def test_jellett_and_routh_are_the_chaplygin_integrals_of_the_hurricane_balls():
+    """J = P1(theta) . w and R = P2(theta) . w, so P(theta) Phi(theta) must equal P(theta_ref)."""
+    p = parse_precision("quad")
+    base = get_model("hurricane")
+    d = derive(hurricane.I1, hurricane.I3, hurricane.R2, hurricane.R3)
+    w = omega_body()
+    model = replace(base, chaplygin=ChaplyginSystem(sp.ImmutableMatrix(d.chaplygin_matrix), (w[1], w[2]), sp.pi / 4))
+    params = resolve_parameters(model, {}, p)
+    I1, I3 = float(params["I1"]), float(params["I3"])
+
+    def P(th):
+        th = float(th)
+        r2, r3 = -mpmath.sin(th), -(1 + mpmath.cos(th))
+        return [[I1 * r2, I3 * r3], [0, mpmath.sqrt(I1 * I3 + I1 * r2**2 + I3 * r3**2)]]
+
+    thetas = [p.number(t) for t in ("0.1", "0.5", "1.0", "1.4")]
+    ref = P(mpmath.pi / 4)
+    for th, phi in zip(thetas, fundamental_matrices(model, p, params, thetas)):
+        Pm = P(th)
+        M = [[float(phi[0]), float(phi[1])], [float(phi[2]), float(phi[3])]]
+        for i in range(2):
+            for j in range(2):
+                got = Pm[i][0] * M[0][j] + Pm[i][1] * M[1][j]
+                assert abs(got - ref[i][j]) < 1e-12 * (1 + abs(ref[i][j]))
