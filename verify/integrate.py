@@ -11,13 +11,14 @@ heyoka's step-size control is relative to the largest state component, so a phi,
 x or y that grows without bound loosens the control of theta and the rates, and the
 energy error grows like t instead of Brouwer's sqrt(t) (HEYOKA.md).  None of phi, psi,
 x, y feeds back into the dynamics (psi, x, y appear nowhere on the right-hand side, phi
-only through x', y'), so after every step a callback moves them into offsets kept
-outside the integrator: phi and psi by whole turns (exact multiples of the precision's
+only through x', y'), so the run is cut into fixed segments and between segments they
+are moved into offsets kept outside the integrator: phi and psi by whole turns (exact multiples of the precision's
 2 pi, so sin and cos of phi are unchanged), x and y entirely.  The returned phi, psi,
 x, y are the offsets plus the reduced values: continuous, never reduced modulo 2 pi.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import heyoka as hy
@@ -158,44 +159,73 @@ def _parse_positive(name: str, value, precision: Precision):
     return v
 
 
-class _Rebaser:
-    """Step callback: keep phi, psi, x, y small inside the integrator (module docstring)."""
+class _Offsets:
+    """phi, psi, x, y moved out of the integrator (module docstring)."""
 
     def __init__(self, precision: Precision):
-        zero = precision.zero()
         self.fp = precision.number
         with mpmath.workprec(precision.bits + 32):
             self.two_pi = precision.number(2 * mpmath.pi)
         self.limit = {1: float(self.two_pi), 2: float(self.two_pi), 6: 1.0, 7: 1.0}
-        self.offset = {i: zero for i in _CYCLIC}
-        self.change_times = []  # time at the end of the step after which offsets changed
-        self.change_offsets = []  # the offsets in effect up to that time
+        self.value = {i: precision.zero() for i in _CYCLIC}
 
-    def __call__(self, ta) -> bool:
-        st = ta.state
-        if any(abs(float(st[i])) > self.limit[i] for i in _CYCLIC):
-            self.change_times.append(ta.time)
-            self.change_offsets.append(dict(self.offset))
-            for i in _CYCLIC:
-                v = st[i]
-                if abs(float(v)) <= self.limit[i]:
-                    continue
-                if i in _ANGLES:
-                    turns = self.fp(round(float(v) / float(self.two_pi))) * self.two_pi
-                else:
-                    turns = v
-                st[i] = v - turns
-                self.offset[i] = self.offset[i] + turns
-        return True
+    def rebase(self, st) -> None:
+        """Move whole turns of phi, psi and all of x, y from the state into the offsets."""
+        for i in _CYCLIC:
+            v = st[i]
+            if abs(float(v)) <= self.limit[i]:
+                continue
+            turns = self.fp(round(float(v) / float(self.two_pi))) * self.two_pi if i in _ANGLES else v
+            st[i] = v - turns
+            self.value[i] = self.value[i] + turns
 
-    def offsets_at(self, times) -> list:
-        """The offsets in effect at each (sorted) output time."""
-        out, p = [], 0
-        for t in times:
-            while p < len(self.change_times) and self.change_times[p] < t:
-                p += 1
-            out.append(self.change_offsets[p] if p < len(self.change_times) else self.offset)
-        return out
+    def restore(self, row) -> np.ndarray:
+        row = np.array(row)
+        for i in _CYCLIC:
+            row[i] = row[i] + self.value[i]
+        return row
+
+
+def _propagate(ta, grid, t_end, h_max, prec: Precision):
+    """Integrate over fixed segments of 2 pi h_max, rebasing between them.
+
+    Each segment is one ``propagate_grid`` call (heyoka's C++ loop, dense output at the
+    grid points inside it), so the Python cost is per segment, not per step; a segment
+    holds at least 2 pi steps (h <= h_max) and typically hundreds.  Segment ends depend
+    on t_end and the initial rates only, so the steps, and the bits of the result, do
+    not depend on the output grid.  Returns (outcome, steps, times, states).
+    """
+    offsets = _Offsets(prec)
+    seg = prec.number(2 * math.pi) * h_max
+    times, states, steps, k = [grid[0]], [np.array(ta.state)], 0, 1
+    j = 1  # next output grid index
+    outcome = hy.taylor_outcome.time_limit
+    while True:
+        end = prec.number(k) * seg
+        if not end < t_end:
+            end = t_end
+        inside = []
+        while j < len(grid) and grid[j] < end:
+            inside.append(grid[j])
+            j += 1
+        res = ta.propagate_grid(prec.array([ta.time] + inside + [end]), max_delta_t=h_max)
+        outcome, steps = res[0], steps + int(res[3])
+        rows = res[-1][1:]
+        for t, row in zip(inside, rows):
+            times.append(t)
+            states.append(offsets.restore(row))
+        if outcome != hy.taylor_outcome.time_limit:  # an event (or a failure) inside the segment
+            times.append(ta.time)
+            states.append(offsets.restore(ta.state))
+            return outcome, steps, times, states
+        if j < len(grid) and not grid[j] > end:  # the segment end is itself an output point
+            times.append(end)
+            states.append(offsets.restore(ta.state))
+            j += 1
+        if not end < t_end:
+            return outcome, steps, times, states
+        offsets.rebase(ta.state)
+        k += 1
 
 
 def solve(
@@ -262,21 +292,8 @@ def solve(
         list(compiled.system), y0, pars=compiled.system_pars(prec.array(pars.values())), tol=tol_value,
         t_events=compiled.t_events() if events else [], **prec.integrator_kwargs(),
     )
-    rebaser = _Rebaser(prec)
-    res = ta.propagate_grid(grid, callback=rebaser, max_delta_t=max_step(y0, pars, prec))
-    outcome, steps, rows = res[0], int(res[3]), res[-1]
+    outcome, steps, times, states = _propagate(ta, grid, t_end, max_step(y0, pars, prec), prec)
     status, label, message, t_events = _interpret(outcome, compiled, ta)
-
-    times = list(grid[: len(rows)])
-    states = [np.array(r) for r in rows]
-    offsets = rebaser.offsets_at(times)
-    if status == 1 and (not times or ta.time != times[-1]):
-        times.append(ta.time)
-        states.append(np.array(ta.state))
-        offsets.append(rebaser.offset)
-    for row, off in zip(states, offsets):
-        for i in _CYCLIC:
-            row[i] = row[i] + off[i]
     t = prec.array(times)
     y = np.ascontiguousarray(np.array(states).T)
 

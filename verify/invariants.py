@@ -60,10 +60,14 @@ def scale_over(model: Model, inv_scale: sp.Expr, y: np.ndarray, params: dict) ->
     The rounding error of an invariant is relative to the magnitude of its terms, which
     can grow far above their initial size during a run (a disk near flat spins fast).
     """
-    symbols = list(STATE) + [p.symbol for p in model.parameters]
-    f = sp.lambdify(symbols, inv_scale, modules="math")
+    f = _scale_function(model, inv_scale)
     pars = [float(params[p.name]) for p in model.parameters]
     return max(f(*[float(v) for v in col], *pars) for col in y.T)
+
+
+@lru_cache(maxsize=None)
+def _scale_function(model: Model, inv_scale: sp.Expr):
+    return sp.lambdify(list(STATE) + [p.symbol for p in model.parameters], inv_scale, modules="math")
 
 
 def evaluate(compiled: CompiledModel, y: np.ndarray, params: dict) -> dict:
