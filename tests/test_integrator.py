@@ -55,13 +55,18 @@ def test_result_is_a_named_record():
 
 
 def test_angles_are_continuous_and_unreduced():
-    """phi advances by the integral of phidot between outputs: no 2 pi jumps."""
-    sol = solve("disk", "10", STANDARD_STATES["disk"], n_eval=4001)
+    """phi advances by the integral of phidot between outputs: no 2 pi jumps.
+
+    With 1001 outputs over 10 s the trapezoid rule is off by up to 0.47 rad where the disk
+    leans to theta = 0.24 and phidot peaks near 230 rad/s; a lost or extra turn would be
+    off by 2 pi - 0.47 or more, so 1 rad separates the two.
+    """
+    sol = solve("disk", "10", STANDARD_STATES["disk"], n_eval=1001)
     for name, rate in (("phi", "phidot"), ("psi", "psidot")):
         ang, w, t = sol[name], sol[rate], sol.t
         step = np.diff(ang)
         trapezoid = 0.5 * (w[1:] + w[:-1]) * np.diff(t)
-        assert np.max(np.abs(step - trapezoid)) < 0.05
+        assert np.max(np.abs(step - trapezoid)) < 1.0
     assert abs(float(sol["psi"][-1])) > 4 * math.pi  # it did wind past several turns
 
 
