@@ -15,16 +15,20 @@ from .symbols import (
 s, c = sp.sin(theta), sp.cos(theta)
 
 
-def eq17_rows(I1, I3) -> sp.Matrix:
-    """Eq. 17: the thin disk or hoop, general I1, I3."""
-    wd = omega_body_dot()
-    lhs = sp.Matrix([(I1 + 1) * wd[0], I1 * wd[1], (I3 + 1) * wd[2]])
-    rhs = sp.Matrix([
+def eq17_rhs(I1, I3) -> sp.Matrix:
+    """Eq. 17, right-hand side."""
+    return sp.Matrix([
         -(psidot * (1 + I3) + phidot * (1 + I3 - I1) * c) * phidot * s - g * c,
         thetadot * (psidot * I3 + phidot * (I3 - I1) * c),
         phidot * thetadot * s,
     ])
-    return lhs - rhs
+
+
+def eq17_rows(I1, I3) -> sp.Matrix:
+    """Eq. 17: the thin disk or hoop, general I1, I3."""
+    wd = omega_body_dot()
+    lhs = sp.Matrix([(I1 + 1) * wd[0], I1 * wd[1], (I3 + 1) * wd[2]])
+    return lhs - eq17_rhs(I1, I3)
 
 
 def eq18_rows(k) -> sp.Matrix:
