@@ -1,0 +1,43 @@
+"""The registry of the paper's claims (see :mod:`verify.claims.base`)."""
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+
+from . import disk, gyroscope, hurricane, ring
+from .base import CONFIRMED, ERRATUM, NOT_CHECKABLE, Claim, Evaluation
+
+SECTIONS = (disk, ring, hurricane, gyroscope)
+N_EQUATIONS, N_FIGURES = 100, 20
+
+
+@lru_cache(maxsize=None)
+def all_claims() -> tuple:
+    claims = tuple(c for module in SECTIONS for c in module.claims())
+    ids = [c.id for c in claims]
+    dupes = {i for i in ids if ids.count(i) > 1}
+    if dupes:
+        raise RuntimeError(f"duplicate claim ids: {sorted(dupes)}")
+    return claims
+
+
+def covered(claims=None) -> tuple:
+    """(equation numbers, figure numbers) that some claim's source names."""
+    eqs, figs = set(), set()
+    for c in claims or all_claims():
+        for a, b in re.findall(r"Eqs?\. (\d+)(?:\s*(?:-|=)\s*(\d+))?", c.source):
+            lo, hi = int(a), int(b or a)
+            eqs.update(range(lo, hi + 1))
+        for a in re.findall(r"Figs?\. (\d+)", c.source):
+            figs.add(int(a))
+        for a, b in re.findall(r"Figs\. (\d+)-(\d+)", c.source):
+            figs.update(range(int(a), int(b) + 1))
+    return eqs, figs
+
+
+def missing() -> tuple:
+    eqs, figs = covered()
+    return (sorted(set(range(1, N_EQUATIONS + 1)) - eqs), sorted(set(range(1, N_FIGURES + 1)) - figs))
+
+
+__all__ = ["CONFIRMED", "ERRATUM", "NOT_CHECKABLE", "Claim", "Evaluation", "all_claims", "covered", "missing"]
