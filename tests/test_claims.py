@@ -30,7 +30,6 @@ def test_claim_ids_are_unique():
     assert len(ids) == len(set(ids))
 
 
-@pytest.mark.xfail(strict=True, reason="issue 3 in progress: the simulated figure captions are not yet registered")
 def test_every_equation_and_caption_has_a_claim():
     eqs, figs = missing()
     assert not eqs and not figs, f"missing equations {eqs}, figures {figs}"

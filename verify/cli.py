@@ -112,7 +112,7 @@ def cmd_models(args) -> int:
 
 
 def cmd_report(args) -> int:
-    from .conservation import write_report
+    from .report import write_report
 
     write_report(args.out)
     return 0

@@ -4,16 +4,19 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
-from . import disk, gyroscope, hurricane, ring
+from . import disk, gyroscope, hurricane, ring, simulations
 from .base import CONFIRMED, ERRATUM, NOT_CHECKABLE, Claim, Evaluation
 
-SECTIONS = (disk, ring, hurricane, gyroscope)
+SECTIONS = (disk, simulations, ring, hurricane, gyroscope)
 N_EQUATIONS, N_FIGURES = 100, 20
 
 
 @lru_cache(maxsize=None)
 def all_claims() -> tuple:
-    claims = tuple(c for module in SECTIONS for c in module.claims())
+    order = [m.SECTION if hasattr(m, "SECTION") else None for m in SECTIONS]
+    claims = [c for module in SECTIONS for c in module.claims()]
+    claims.sort(key=lambda c: [o for o in order if o].index(c.section))  # stable: keeps order within a section
+    claims = tuple(claims)
     ids = [c.id for c in claims]
     dupes = {i for i in ids if ids.count(i) > 1}
     if dupes:

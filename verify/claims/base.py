@@ -17,6 +17,29 @@ CONFIRMED, ERRATUM, NOT_CHECKABLE = "confirmed", "erratum", "not-checkable"
 
 
 @dataclass(frozen=True)
+class RunData:
+    """What a figure shows of one run (arrays in double; the run itself may be finer)."""
+
+    label: str
+    t: tuple
+    theta: tuple
+    phi: tuple
+    omega3: tuple
+    x: tuple
+    y: tuple
+    energy_drift: float
+    outcome: str
+
+
+@dataclass(frozen=True)
+class FigureData:
+    name: str  # file stem, e.g. "fig-05"
+    title: str
+    runs: tuple  # RunData per panel column (LHS, RHS, ...)
+    path_label: str = "centre of mass"
+
+
+@dataclass(frozen=True)
 class Evaluation:
     """The outcome of a check.
 

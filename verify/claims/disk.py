@@ -6,6 +6,8 @@ integration for the moments of inertia, linearisation and eigenvalues by sympy.
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import sympy as sp
 
 from models import sliding_disk
@@ -157,6 +159,17 @@ def _check_eq17():
 
     ok = same(paper.eq17_rows(I1, I3), _rows())
     return decide(ok, "derived rows (general I1, I3)", "Eq. 17 as printed", "row-by-row identity")
+
+
+def _check_knife_edge():
+    from models import paper
+
+    rhs = paper.eq18_rows(k).subs({thetaddot: 0, phiddot: 0, psiddot: 0, thetadot: 0}).subs(theta, sp.pi / 2)
+    straight = rhs.subs(phidot, 0)
+    diameter = rhs.subs(psidot, 0)
+    ok = same(straight, sp.zeros(3, 1)) and same(diameter, sp.zeros(3, 1))
+    return decide(ok, f"Eq. 18 at theta = pi/2, thetadot = 0: phidot = 0 gives {show(straight.T)}, psidot = 0 gives "
+                      f"{show(diameter.T)}", "the rhs of Eq. 18 is zero", "with every second derivative zero")
 
 
 def _check_eq19():
@@ -366,24 +379,24 @@ def _check_eq46():
                   "the algebra the paper leaves to Mathematica, done with sympy")
 
 
+@lru_cache(maxsize=None)
 def _fig6_rates(theta0, family):
     """Exact steady spin-down rates of the disk (k = 1/4, g = 980) at theta0, 40 digits.
 
-    Row 1 of the derived equations with thetadot = 0 is quadratic in the rates; with
-    psidot = -phidot cos (omega3 = 0, CM at rest) or psidot = -phidot / cos (no vertical
-    spin) it fixes phidot^2.  The sign is the figure's: phidot < 0.
+    Row 1 of the derived equations with thetadot = 0 is linear in phidot^2 once psidot is
+    tied to phidot: psidot = -phidot cos (omega3 = 0, CM at rest) or psidot = -phidot / cos
+    (no vertical spin).  The sign is the figure's: phidot < 0.
     """
-    acc = derive(k, 2 * k, sp.Integer(-1), sp.Integer(0)).accelerations[0]
-    P = sp.Symbol("P", positive=True)
-    ratio = -sp.cos(theta) if family == "cm-at-rest" else -1 / sp.cos(theta)
-    expr = sp.numer(sp.together(acc.subs({thetadot: 0, psidot: ratio * phidot}).subs(phidot**2, P)))
-    expr = expr.subs({k: sp.Rational(1, 4), g: 980, theta: sp.Rational(theta0)})
-    sol = sp.solve(expr, P)
     import mpmath
 
+    acc = derive(k, 2 * k, sp.Integer(-1), sp.Integer(0)).accelerations[0]
+    ratio = -sp.cos(theta) if family == "cm-at-rest" else -1 / sp.cos(theta)
+    row = acc.subs({thetadot: 0, psidot: ratio * phidot, k: sp.Rational(1, 4), g: 980})
+    f = sp.lambdify((theta, phidot), row, modules="mpmath")
     with mpmath.workdps(40):
-        phi_rate = -mpmath.sqrt(mpmath.mpf(sp.N(sol[0], 45)))
         th = mpmath.mpf(sp.N(sp.Rational(theta0), 45))
+        f0, f1 = f(th, 0), f(th, 1)  # linear in P = phidot^2
+        phi_rate = -mpmath.sqrt(-f0 / (f1 - f0))
         psi_rate = phi_rate * (-mpmath.cos(th) if family == "cm-at-rest" else -1 / mpmath.cos(th))
         v = abs(psi_rate + phi_rate * mpmath.cos(th))  # |v_CM| / R = |omega3|
     return phi_rate, psi_rate, v
@@ -435,6 +448,8 @@ def claims() -> list:
               _check_fig1),
         Claim("eq-17", "Eq. 17", d, "equations of motion of the thin disk, general I1, I3", _check_eq17),
         Claim("eq-18", "Eq. 18", d, "equations of motion with I1 = k, I3 = 2k", _check_eq18),
+        Claim("text-knife-edge", "text after Eq. 18", d, "on a knife edge (theta = pi/2), straight-line rolling and spinning "
+              "on a diameter make the rhs of Eq. 18 zero", _check_knife_edge),
         Claim("eq-19", "Eq. 19", d, "L_perp = I3 (psidot + phidot cos) cos(alpha) + I1 phidot sin(theta) sin(alpha)", _check_eq19),
         Claim("eq-20-21", "Eqs. 20-21", d, "torque balance of the steady circle, reducing to component 1 of Eq. 17",
               _check_eq21),

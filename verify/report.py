@@ -1,0 +1,171 @@
+"""The verification report: results in, Markdown / HTML / JSON out (no numerics here).
+
+``python -m verify report`` evaluates every claim of the registry, runs the conservation
+table, and writes atomically ``reports/REPORT.md``, ``reports/report.html``,
+``reports/results.json``, the conservation table, and ``reports/timing.json`` (the only
+file whose content changes from run to run).
+"""
+from __future__ import annotations
+
+import base64
+import html
+import json
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+
+from .claims import CONFIRMED, ERRATUM, NOT_CHECKABLE, all_claims, missing
+from .claims.base import Claim, Evaluation
+from .provenance import provenance, write_atomic
+
+VERDICTS = (CONFIRMED, ERRATUM, NOT_CHECKABLE)
+
+
+def evaluate_all(progress=None) -> list:
+    out = []
+    claims = all_claims()
+    for i, claim in enumerate(claims, 1):
+        t0 = time.monotonic()
+        ev = claim.evaluate()
+        if progress:
+            progress(f"[{i:3d}/{len(claims)}] {claim.source:<28} {ev.verdict:<13} {time.monotonic() - t0:5.1f} s")
+        out.append((claim, ev))
+    return out
+
+
+def result_record(claim: Claim, ev: Evaluation) -> dict:
+    rec = {"id": claim.id, "source": claim.source, "statement": claim.statement, "verdict": ev.verdict,
+           "expected": ev.expected, "observed": ev.observed, "detail": ev.detail}
+    rec["method"] = claim.method
+    rec["tolerance"] = claim.tolerance
+    if ev.correction:
+        rec["correction"] = ev.correction
+    return rec
+
+
+def _md_escape(text: str) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def render_markdown(results: list, conservation_md: str, prov: dict, figure_dir: str = "figures") -> str:
+    counts = Counter(ev.verdict for _, ev in results)
+    eqs, figs = missing()
+    lines = [
+        "# Verification report",
+        "",
+        "Every numbered equation and figure caption of `../shared/paper.md`, each with a verdict from an independent",
+        "route (sympy identities against the rows derived from the vectors, mpmath numbers, heyoka runs).",
+        "",
+        "| verdict | claims |",
+        "|---|---:|",
+    ]
+    lines += [f"| {v} | {counts.get(v, 0)} |" for v in VERDICTS]
+    lines += [f"| total | {len(results)} |", ""]
+    if eqs or figs:
+        lines += [f"Not yet covered by a claim: equations {eqs or 'none'}; figures {figs or 'none'}.", ""]
+    lines += ["## Errata", ""]
+    for claim, ev in results:
+        if ev.verdict == ERRATUM:
+            lines += [f"### {claim.source}: {claim.statement}", "",
+                      f"- **as printed:** {ev.observed}",
+                      f"- **corrected:** {ev.correction}",
+                      f"- **evidence:** {ev.expected}. {ev.detail}", ""]
+    section = None
+    for claim, ev in results:
+        if claim.section != section:
+            section = claim.section
+            lines += [f"## {section}", "", "| source | statement | verdict | independent route | paper | detail |",
+                      "|---|---|---|---|---|---|"]
+        lines.append(f"| {claim.source} | {_md_escape(claim.statement)} | {ev.verdict} | {_md_escape(ev.expected)} "
+                     f"| {_md_escape(ev.observed)} | {_md_escape(ev.detail)} |")
+    lines += ["", "## Regenerated figures", ""]
+    for claim, ev in results:
+        for fig in ev.figures:
+            lines += [f"### {fig.title} ({ev.verdict})", "", f"![{fig.title}]({figure_dir}/{fig.name}.png)", ""]
+    lines += ["", conservation_md.replace("# Conservation", "## Conservation", 1), ""]
+    return "\n".join(lines)
+
+
+def render_html(markdown_text: str, images: dict) -> str:
+    """A self-contained page: the Markdown rendered by a small converter (tables, headings, lists)."""
+    body, in_table = [], False
+    for raw in markdown_text.splitlines():
+        line = raw.rstrip()
+        if line.startswith("|"):
+            cells = [html.escape(c.strip().replace("\\|", "|")) for c in line.strip("|").split(" | ")]
+            if set(line.replace("|", "").strip()) <= set("-: "):
+                continue
+            if not in_table:
+                body.append("<table>")
+                body.append("<tr>" + "".join(f"<th>{c}</th>" for c in cells) + "</tr>")
+                in_table = True
+            else:
+                body.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+            continue
+        if in_table:
+            body.append("</table>")
+            in_table = False
+        if line.startswith("![") and "](" in line:
+            target = line.split("](", 1)[1].rstrip(")")
+            name = target.rsplit("/", 1)[-1]
+            if name in images:
+                data = base64.b64encode(images[name]).decode()
+                body.append(f"<p><img alt='{html.escape(name)}' src='data:image/png;base64,{data}'></p>")
+            continue
+        if line.startswith("#"):
+            level = len(line) - len(line.lstrip("#"))
+            body.append(f"<h{level}>{html.escape(line[level:].strip())}</h{level}>")
+        elif line.startswith("- "):
+            text = html.escape(line[2:]).replace("**", "")
+            body.append(f"<li>{text}</li>")
+        elif line.startswith("```"):
+            body.append("<pre>" if not body or body[-1] != "<pre>" else "</pre>")
+        elif line:
+            body.append(f"<p>{html.escape(line)}</p>")
+    if in_table:
+        body.append("</table>")
+    style = ("body{font-family:sans-serif;max-width:80em;margin:auto}table{border-collapse:collapse}"
+             "td,th{border:1px solid #ccc;padding:2px 6px;font-size:90%;vertical-align:top}")
+    return ("<!DOCTYPE html>\n<html><head><meta charset='utf-8'><title>Verification report</title>"
+            f"<style>{style}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n")
+
+
+def write_report(out="reports") -> None:
+    from .conservation import PRECISIONS, conservation_rows, render_markdown as conservation_markdown
+
+    out = Path(out)
+    say = lambda s: print(s, file=sys.stderr, flush=True)
+    timing = {}
+    t0 = time.monotonic()
+    say("claims:")
+    results = evaluate_all(progress=lambda s: say("  " + s))
+    timing["claims_seconds"] = round(time.monotonic() - t0, 1)
+    t1 = time.monotonic()
+    say("conservation:")
+    rows = conservation_rows(progress=lambda s: say(f"  {s}"))
+    timing["conservation_seconds"] = round(time.monotonic() - t1, 1)
+    prov = provenance(PRECISIONS)
+    cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
+    md = render_markdown(results, cons_md, prov)
+    md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"
+    from .figures import render
+
+    images = {}
+    for _, ev in results:
+        for fig in ev.figures:
+            images[f"{fig.name}.png"] = render(fig)
+    for name, data in images.items():
+        write_atomic(out / "figures" / name, data)
+    results_json = {"claims": [result_record(c, e) for c, e in results], "conservation": rows, "provenance": prov}
+    write_atomic(out / "results.json", json.dumps(results_json, indent=2) + "\n")
+    write_atomic(out / "REPORT.md", md)
+    write_atomic(out / "report.html", render_html(md, images))
+    write_atomic(out / "conservation.md", conservation_markdown(rows, prov))
+    write_atomic(out / "conservation.json", json.dumps({"rows": rows, "provenance": prov}, indent=2) + "\n")
+    timing["total_seconds"] = round(time.monotonic() - t0, 1)
+    import platform
+
+    timing["machine"] = {"platform": platform.platform(), "processor": platform.machine()}
+    write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
+    say(f"wrote {out}/REPORT.md, report.html, results.json, conservation.md ({timing['total_seconds']} s)")
