@@ -134,9 +134,12 @@ def render_html(markdown_text: str, images: dict) -> str:
 def write_report(out="reports") -> None:
     from .conservation import PRECISIONS, conservation_rows, render_markdown as conservation_markdown
 
+    import os
+
     out = Path(out)
     say = lambda s: print(s, file=sys.stderr, flush=True)
-    timing = {}
+    cache = Path(os.environ.get("HEYOKA_CACHE_DIR", Path.home() / ".cache" / "heyoka"))
+    timing = {"heyoka_cache_at_start": "warm" if cache.exists() and any(cache.iterdir()) else "cold"}
     t0 = time.monotonic()
     say("claims:")
     results = evaluate_all(progress=lambda s: say("  " + s))

@@ -1,0 +1,53 @@
+"""The report writer: structure of results.json, determinism, atomic writes (temporary folders only)."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from verify.claims import all_claims
+from verify.provenance import write_atomic
+from verify.report import render_html, render_markdown, result_record
+
+KEYS = {"id", "source", "statement", "verdict", "expected", "observed", "detail"}
+
+
+def _some_results():
+    wanted = {"eq-40", "eq-41", "eq-1", "fig-2"}
+    return [(c, c.evaluate()) for c in all_claims() if c.id in wanted]
+
+
+def test_result_records_carry_the_required_fields():
+    for claim, ev in _some_results():
+        rec = result_record(claim, ev)
+        assert KEYS <= set(rec)
+        if ev.verdict == "erratum":
+            assert rec["correction"]
+
+
+def test_rendering_is_deterministic_and_lists_errata(tmp_path):
+    results = _some_results()
+    prov = {"versions": {}, "source_sha256": "x", "precisions": ["double"]}
+    a = render_markdown(results, "# Conservation\n", prov)
+    b = render_markdown(results, "# Conservation\n", prov)
+    assert a == b
+    assert "## Errata" in a and "### Eq. 40" in a
+    page = render_html(a, {})
+    assert page.startswith("<!DOCTYPE html>") and "<table>" in page
+    write_atomic(tmp_path / "REPORT.md", a)
+    assert (tmp_path / "REPORT.md").read_text() == a
+    json.dumps([result_record(c, e) for c, e in results])
+
+
+def test_atomic_write_leaves_the_old_file_on_failure(tmp_path):
+    target = tmp_path / "results.json"
+    write_atomic(target, "old")
+
+    class Boom:
+        def encode(self):
+            raise RuntimeError("boom")
+
+    with pytest.raises(Exception):
+        write_atomic(target, Boom())
+    assert target.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["results.json"]
