@@ -111,6 +111,22 @@ def cmd_models(args) -> int:
     return 0
 
 
+def cmd_threshold(args) -> int:
+    from .studies.thresholds import threshold, to_record
+
+    try:
+        rec = to_record(threshold(args.model, args.motion, _pairs(args.param, "param")))
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    if args.format == "json":
+        print(json.dumps(rec, indent=2))
+    else:
+        value = rec["threshold"]["value"]
+        print(f"{rec['model']} {rec['motion']}: {rec['threshold']['name']} = {value if value else 'none'}"
+              f"{'  (' + rec['closed_form'] + ')' if rec['closed_form'] else ''}\n  {rec['method']}")
+    return 0
+
+
 def cmd_report(args) -> int:
     from .report import write_report
 
@@ -137,6 +153,13 @@ def parser() -> argparse.ArgumentParser:
     m = sub.add_parser("models", help="list the models, their parameters and invariants")
     m.add_argument("--format", choices=("json", "text"), default="text")
     m.set_defaults(run=cmd_models)
+
+    th = sub.add_parser("threshold", help="linear stability threshold of a steady motion")
+    th.add_argument("model")
+    th.add_argument("motion", help="diameter-spin, straight-line or precession (as the model has them)")
+    th.add_argument("--param", action="append", metavar="NAME=VALUE")
+    th.add_argument("--format", choices=("json", "text"), default="text")
+    th.set_defaults(run=cmd_threshold)
 
     r = sub.add_parser("report", help="run the verification and write reports/")
     r.add_argument("--out", default="reports", help="output folder (default: reports)")

@@ -88,3 +88,16 @@ def definition(id, source, section, statement, reason) -> Claim:
     """A statement that fixes notation or sets up an approximation: nothing to decide."""
     return Claim(id, source, section, statement, check=lambda: None, method="definition",
                  tolerance="-", reason_not_checkable=reason)
+
+
+def rows_identity(id, source, section, statement, printed, derived, body: str) -> Claim:
+    """A printed vector equation (LHS - RHS, 1-2-3 components) against the derived rows of ``body``."""
+    def check():
+        from .vectors import same, show
+        import sympy as sp
+
+        p, d = printed(), derived()
+        ok = same(p, d)
+        return decide(ok, f"derived Newton-Euler rows of the {body} (models/rolling.py)", f"{source} as printed, LHS - RHS",
+                      "identical, row by row" if ok else f"printed - derived = {show(sp.simplify(p - d).T)}")
+    return Claim(id, source, section, statement, check)

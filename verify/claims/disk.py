@@ -14,7 +14,7 @@ from models import sliding_disk
 from models.rolling import derive
 from models.symbols import g, phi, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot
 
-from .base import Claim, decide, definition
+from .base import Claim, decide, definition, rows_identity
 from .vectors import (
     E1, E2, E3, c, euler_angles_omega, omega_body, omega_body_dot, omega_frame, s, same, show,
     to_inertial, vertical_in_frame,
@@ -36,12 +36,7 @@ def _I():
 
 
 def _vector_identity(id, source, statement, printed_minus):
-    def check():
-        printed = printed_minus()
-        ok = same(printed, _rows())
-        return decide(ok, "derived rows Iw' + Omega x Iw - r_P x (a_C + g Z)", f"{source} as printed, LHS - RHS",
-                      "identical to the rows derived from the vectors" if ok else f"differs: {show(sp.simplify(printed - _rows()))}")
-    return Claim(id, source, SECTION, statement, check)
+    return rows_identity(id, source, SECTION, statement, printed_minus, _rows, "thin disk (general I1, I3)")
 
 
 # --- Eq. 4: inertia -------------------------------------------------------------------

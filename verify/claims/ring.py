@@ -8,7 +8,7 @@ from models import paper, ring
 from models.rolling import derive
 from models.symbols import g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot
 
-from .base import Claim, decide, definition
+from .base import Claim, decide, definition, rows_identity
 from .vectors import E1, E2, E3, c, omega_body, omega_body_dot, omega_frame, s, same, show, vertical_in_frame
 
 SECTION = "Thick ring (Eqs. 47-62)"
@@ -26,12 +26,7 @@ def _I():
 
 
 def _identity(id, source, statement, printed):
-    def check():
-        p = printed()
-        ok = same(p, _rows())
-        return decide(ok, "derived rows of the ring (models/rolling.py)", f"{source} as printed, LHS - RHS",
-                      "identical" if ok else f"differs by {show(sp.simplify(p - _rows()).T)}")
-    return Claim(id, source, SECTION, statement, check)
+    return rows_identity(id, source, SECTION, statement, printed, _rows, "ring")
 
 
 def _eq47():
