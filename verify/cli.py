@@ -127,6 +127,20 @@ def cmd_threshold(args) -> int:
     return 0
 
 
+def cmd_spindown(args) -> int:
+    from .studies.spindown import spindown, to_record
+
+    try:
+        rec = to_record(spindown(args.model, args.theta, args.family, _pairs(args.param, "param")))
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    if args.format == "json":
+        print(json.dumps(rec, indent=2))
+    else:
+        print("\n".join(f"{k:<15} {v}" for k, v in rec.items()))
+    return 0
+
+
 def cmd_report(args) -> int:
     from .report import write_report
 
@@ -160,6 +174,14 @@ def parser() -> argparse.ArgumentParser:
     th.add_argument("--param", action="append", metavar="NAME=VALUE")
     th.add_argument("--format", choices=("json", "text"), default="text")
     th.set_defaults(run=cmd_threshold)
+
+    sd = sub.add_parser("spindown", help="exact steady spin-down state at a tilt, against Eq. 45 / Eq. 61")
+    sd.add_argument("model", help="disk or ring")
+    sd.add_argument("--theta", required=True)
+    sd.add_argument("--family", default="cm-at-rest", help="cm-at-rest (default) or zero-vertical-spin")
+    sd.add_argument("--param", action="append", metavar="NAME=VALUE")
+    sd.add_argument("--format", choices=("json", "text"), default="text")
+    sd.set_defaults(run=cmd_spindown)
 
     r = sub.add_parser("report", help="run the verification and write reports/")
     r.add_argument("--out", default="reports", help="output folder (default: reports)")
