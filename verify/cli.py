@@ -112,10 +112,18 @@ def cmd_models(args) -> int:
 
 
 def cmd_threshold(args) -> int:
-    from .studies.thresholds import threshold, to_record
+    from .studies.thresholds import bracket, threshold, to_record
 
+    params = _pairs(args.param, "param")
     try:
-        rec = to_record(threshold(args.model, args.motion, _pairs(args.param, "param")))
+        result = threshold(args.model, args.motion, params)
+        nonlinear = None
+        if args.nonlinear_tilt is not None:
+            tilt = float(args.nonlinear_tilt)
+            if not 0 < tilt < 0.1:
+                raise ValueError(f"--nonlinear-tilt {args.nonlinear_tilt} must lie in (0, 0.1)")
+            nonlinear = (args.nonlinear_tilt, bracket(args.model, args.motion, args.nonlinear_tilt, params))
+        rec = to_record(result, nonlinear)
     except ValueError as err:
         raise UsageError(str(err)) from None
     if args.format == "json":
@@ -172,6 +180,8 @@ def parser() -> argparse.ArgumentParser:
     th.add_argument("model")
     th.add_argument("motion", help="diameter-spin, straight-line or precession (as the model has them)")
     th.add_argument("--param", action="append", metavar="NAME=VALUE")
+    th.add_argument("--nonlinear-tilt", default=None, metavar="TILT",
+                    help="also bracket the threshold by bisection on the full equations with this tilt (e.g. 1e-6)")
     th.add_argument("--format", choices=("json", "text"), default="text")
     th.set_defaults(run=cmd_threshold)
 

@@ -66,8 +66,8 @@ def _params(model, values: dict) -> dict:
     return out
 
 
-def to_record(t: Threshold) -> dict:
-    """The JSON object of ``python -m verify threshold --format json``."""
+def to_record(t: Threshold, nonlinear=None) -> dict:
+    """The JSON object of ``python -m verify threshold --format json``; ``nonlinear`` is (tilt, (lo, hi))."""
     return {
         "model": t.model,
         "motion": t.motion,
@@ -75,7 +75,10 @@ def to_record(t: Threshold) -> dict:
         "threshold": {"name": t.name, "value": None if t.value is None else mpmath.nstr(t.value, 20, strip_zeros=False)},
         "closed_form": t.closed_form,
         "method": t.method,
-        "bracket": None,  # the nonlinear bisection is not implemented yet (issue 4)
+        "bracket": None if not nonlinear or nonlinear[1] is None else {
+            "tilt": nonlinear[0], "low": mpmath.nstr(nonlinear[1][0], 12), "high": mpmath.nstr(nonlinear[1][1], 12),
+            "method": f"bisection on the rate; theta perturbed by the tilt, grows = leaves the domain or moves more than "
+                      f"{GROWTH} x the tilt within 10 s (double, derived equations)"},
     }
 
 
@@ -171,3 +174,66 @@ def _hurricane_precession(model, subs, shown, dps) -> Threshold:
         value = mpmath.findroot(w2n, pair, solver="anderson")
     return Threshold("hurricane", "precession", shown, "phidot0", value, None,
                      "linearisation of the derived equations along Eq. 72; root by mpmath", "numeric")
+
+
+# --- confirmation by the full nonlinear equations ----------------------------------------
+
+GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
+
+
+def steady_state(name: str, motion: str, rate, params: dict) -> dict:
+    """The steady motion at ``rate`` as decimal strings (theta, phidot, psidot), 30 digits."""
+    model = get_model(name)
+    subs = _params(model, params)
+    pv = {p.name: mpmath.mpf(sp.N(subs[p.symbol], 40)) for p in model.parameters}
+    with mpmath.workdps(30):
+        rate = mpmath.mpf(rate)
+        if name in ("disk", "sliding-disk"):
+            th, phd, psd = mpmath.pi / 2, (rate if motion == "diameter-spin" else 0), (rate if motion == "straight-line" else 0)
+        elif motion == "straight-line":
+            th, phd, psd = mpmath.acot(pv["h"]), 0, rate
+        elif name == "ring":
+            row1 = model.accelerations[0].subs({thetadot: 0, psidot: 0}).subs(subs)
+            f = sp.lambdify((theta, phidot), sp.numer(sp.together(row1)), "mpmath")
+            th = mpmath.findroot(lambda t: f(t, rate), (mpmath.acot(pv["h"]), mpmath.pi / 2 - mpmath.mpf("1e-9")),
+                                 solver="anderson")
+            phd, psd = rate, 0
+        else:
+            th = mpmath.acos((pv["I3"] - pv["g"] / rate**2) / (pv["I1"] - pv["I3"]))
+            phd = psd = rate
+        return {"theta": mpmath.nstr(th, 30), "phidot": mpmath.nstr(mpmath.mpf(phd), 30),
+                "psidot": mpmath.nstr(mpmath.mpf(psd), 30)}
+
+
+def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
+    """Perturb theta alone by ``tilt`` (rates kept: the body moves onto a neighbouring member of the
+    family) and report whether theta leaves its steady value by more than GROWTH x tilt, or the
+    run leaves the model's domain, within ``t_end``."""
+    from verify.integrate import solve
+
+    state = steady_state(name, motion, rate, params)
+    th0 = mpmath.mpf(state["theta"])
+    state["theta"] = mpmath.nstr(th0 + mpmath.mpf(tilt), 30)
+    sol = solve(name, t_end, state, params, n_eval=401)
+    if sol.outcome != "ok":
+        return True
+    dev = max(abs(float(v) - float(th0)) for v in sol["theta"])
+    return dev > GROWTH * float(tilt)
+
+
+def bracket(name: str, motion: str, tilt: str, params=None, iterations: int = 25, t_end: str = "10"):
+    """Bisect the rate between growth and no growth, starting from [lin/2, 2 lin]."""
+    params = dict(params or {})
+    lin = threshold(name, motion, params).value
+    if lin is None:
+        return None
+    lo, hi = lin / 2, lin * 2
+    if not grows(name, motion, lo, tilt, params, t_end) or grows(name, motion, hi, tilt, params, t_end):
+        raise RuntimeError(f"{name} {motion}: no sign change of the growth test on [{lo}, {hi}] at tilt {tilt}")
+    for _ in range(iterations):
+        mid = (lo + hi) / 2
+        if grows(name, motion, mid, tilt, params, t_end):
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
