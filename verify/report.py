@@ -159,10 +159,15 @@ def write_report(out="reports") -> None:
         say("claims (the conservation table runs alongside):")
         results = evaluate_all(progress=lambda s: say("  " + s))
         timing["claims_seconds"] = round(time.monotonic() - t0, 1)
+        t1 = time.monotonic()
+        from .studies.summary import render as render_studies, spindown_rows, threshold_rows
+
+        studies = {"thresholds": threshold_rows(progress=lambda s: say("  " + s)), "spindown": spindown_rows()}
+        timing["studies_seconds"] = round(time.monotonic() - t1, 1)
         rows, timing["conservation_seconds"] = future.result()
     prov = provenance(PRECISIONS)
     cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
-    md = render_markdown(results, cons_md, prov)
+    md = render_markdown(results, cons_md + "\n" + render_studies(studies["thresholds"], studies["spindown"]), prov)
     md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"
     from .figures import render
 
@@ -172,7 +177,8 @@ def write_report(out="reports") -> None:
             images[f"{fig.name}.png"] = render(fig)
     for name, data in images.items():
         write_atomic(out / "figures" / name, data)
-    results_json = {"claims": [result_record(c, e) for c, e in results], "conservation": rows, "provenance": prov}
+    results_json = {"claims": [result_record(c, e) for c, e in results], "conservation": rows, "studies": studies,
+                    "provenance": prov}
     write_atomic(out / "results.json", json.dumps(results_json, indent=2) + "\n")
     write_atomic(out / "REPORT.md", md)
     write_atomic(out / "report.html", render_html(md, images))
