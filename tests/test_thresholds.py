@@ -96,6 +96,8 @@ def test_threshold_json_contract(capsys):
     (["threshold", "gyroscope", "precession"], "has no threshold study"),
     (["threshold", "disk", "precession"], "allowed: diameter-spin, straight-line"),
     (["threshold", "disk", "diameter-spin", "--param", "k=2"], "k=2 is out of its physical range"),
+    (["threshold", "disk", "diameter-spin", "--nonlinear-tilt", "abc"], "--nonlinear-tilt 'abc' is not a number"),
+    (["threshold", "disk", "diameter-spin", "--nonlinear-tilt", "0.5"], "must lie in (0, 0.1)"),
 ])
 def test_threshold_bad_input(capsys, argv, message):
     assert main(argv) == 2

@@ -119,7 +119,10 @@ def cmd_threshold(args) -> int:
         result = threshold(args.model, args.motion, params)
         nonlinear = None
         if args.nonlinear_tilt is not None:
-            tilt = float(args.nonlinear_tilt)
+            try:
+                tilt = float(args.nonlinear_tilt)
+            except ValueError:
+                raise ValueError(f"--nonlinear-tilt {args.nonlinear_tilt!r} is not a number; allowed: (0, 0.1)") from None
             if not 0 < tilt < 0.1:
                 raise ValueError(f"--nonlinear-tilt {args.nonlinear_tilt} must lie in (0, 0.1)")
             nonlinear = (args.nonlinear_tilt, bracket(args.model, args.motion, args.nonlinear_tilt, params))
@@ -206,6 +209,6 @@ def main(argv=None) -> int:
     except UsageError as err:
         print(f"error: {err}", file=sys.stderr)
         return 2
-    except IntegrationError as err:
+    except (IntegrationError, RuntimeError) as err:  # a failed run or a study that found no root
         print(f"error: {err}", file=sys.stderr)
         return 1
