@@ -65,3 +65,35 @@ def test_spindown_json_contract(capsys):
 def test_spindown_bad_input(capsys, argv, message):
     assert main(argv) == 2
     assert message in capsys.readouterr().err
+
+
+def test_family_quantities_scale_as_stated_in_the_report():
+    """Along the disk's family with no vertical spin: |omega| ~ theta^1/2, v_CM ~ theta^3/2,
+    contact speed and w2 diverge like theta^-1/2 and theta^-1, N/(Mg) -> 1; the slopes come from two
+    exact states four decades apart."""
+    from verify.studies.spindown import family_quantities
+
+    a, b = (family_quantities(spindown("disk", th, "zero-vertical-spin")) for th in ("1e-4", "1e-8"))
+    slope = lambda k: mpmath.log10(b[k] / a[k]) / -4  # noqa: E731  (d log q / d log theta)
+    for key, expected in (("omega", 0.5), ("v_cm", 1.5), ("v_contact", -0.5), ("w2", -1)):
+        assert abs(slope(key) - expected) < 1e-3, (key, slope(key))
+    assert abs(b["normal_force"] - 1) < 1e-7
+    rest = family_quantities(spindown("disk", "1e-6", "cm-at-rest"))
+    assert rest["v_cm"] < mpmath.mpf(10) ** -40
+
+
+def test_double_loses_two_digits_of_omega3_per_decade_of_theta():
+    """omega3 = psidot + phidot cos(theta) ~ -phidot theta^2 on the family with no vertical spin: a
+    cancellation costing 2 log10(1/theta) digits; quad, with the same loss, keeps its other digits."""
+    import math
+
+    from verify.studies.spindown import family_state, precision_runs
+
+    for th, lost in (("1e-3", 6), ("1e-5", 10)):
+        runs = {r.precision: r for r in precision_runs("test", family_state(th, "zero-vertical-spin"),
+                                                       precisions=("double", "quad"), turns=2)}
+        d = runs["double"]
+        digits_lost = math.log10(d.omega3_error / d.omega3_scale / 2.0**-52)
+        assert lost - 1.5 < digits_lost < lost + 1.5, (th, digits_lost)
+        q = runs["quad"]
+        assert q.omega3_error / q.omega3_scale < 1e-18

@@ -93,7 +93,7 @@ def test_threshold_json_contract(capsys):
 
 
 @pytest.mark.parametrize("argv,message", [
-    (["threshold", "gyroscope", "precession"], "has no threshold study"),
+    (["threshold", "effective", "precession"], "has no threshold study"),
     (["threshold", "disk", "precession"], "allowed: diameter-spin, straight-line"),
     (["threshold", "disk", "diameter-spin", "--param", "k=2"], "k=2 is out of its physical range"),
     (["threshold", "disk", "diameter-spin", "--nonlinear-tilt", "abc"], "--nonlinear-tilt 'abc' is not a number"),
@@ -121,3 +121,120 @@ def test_threshold_json_with_bracket(capsys):
     rec = json.loads(capsys.readouterr().out)
     assert float(rec["bracket"]["low"]) < float(rec["bracket"]["high"])
     assert rec["bracket"]["tilt"] == "1e-6"
+
+
+# --- the sleeping motion (theta = 0) ------------------------------------------------------
+
+def test_gyroscope_sleeping_threshold_matches_the_effective_potential():
+    """Independent route: the paper's own energy argument (Eqs. 89-93) redone from the model's
+    Lagrangian.  With p_phi = p_psi the effective potential near theta = 0 is
+    theta^2/2 (p_psi^2/(4 I1~) - g~) with I1~ = I1 + 4 (about the pivot), g~ = 2 g, p_psi = I3 omega3:
+    stable while I3^2 omega3^2 > 4 I1~ g~."""
+    from models.gyroscope import lagrangian_from_vectors
+
+    I1, I3, g = (get_model("gyroscope").parameter(n).symbol for n in ("I1", "I3", "g"))
+    L = lagrangian_from_vectors()
+    w3, th = sp.symbols("omega3 th", positive=True)
+    p_psi = sp.diff(L, psidot)
+    p_phi = sp.diff(L, phidot)
+    # Routhian with p_phi = p_psi = I3 omega3: solve for the rates, then V_eff = -R at thetadot = 0
+    sol = sp.solve([p_phi - I3 * w3, p_psi - I3 * w3], [phidot, psidot], dict=True)[0]
+    kinetic = (L + 2 * g * sp.cos(theta)).subs(thetadot, 0)  # T at thetadot = 0 (V = 2 g cos theta)
+    veff = (p_phi * phidot + p_psi * psidot - kinetic).subs(sol) + 2 * g * sp.cos(theta)
+    stiffness = sp.simplify(sp.series(veff.subs(theta, th), th, 0, 3).removeO().coeff(th, 2))
+    crit = [r for r in sp.solve(stiffness, w3) if r.is_positive is not False]
+    expected = sp.N(crit[0].subs({I1: sp.Rational(7, 5), I3: sp.Rational(2, 5), g: 980}), 30)
+    with mpmath.workdps(30):
+        t = threshold("gyroscope", "sleeping")
+        assert abs(t.value - mpmath.mpf(str(expected))) < mpmath.mpf(10) ** -20 * t.value
+
+
+def test_hurricane_sleeping_nutation_frequency_matches_the_linearisation():
+    """Independent route: a nonlinear run at a tiny tilt.  |u|^2 beats at the difference of the two
+    precession frequencies, sqrt(B^2 - 4A); the period between successive maxima of theta in the run
+    must match 2 pi / sqrt(B^2 - 4A) to the accuracy of the sampled grid and the O(tilt^2) terms."""
+    import numpy as np
+
+    from verify.studies.thresholds import sleeping_coefficients
+
+    model = get_model("hurricane")
+    A, B = sleeping_coefficients(model)
+    rate = 1.3 * float(threshold("hurricane", "sleeping").value)
+    subs = {p.symbol: p.default for p in model.parameters}
+    w3 = sp.Symbol("omega3", real=True)
+    disc = float((B**2 - 4 * A).subs(subs).subs(w3, rate))
+    period = 2 * math.pi / math.sqrt(disc)
+    n = 20001
+    sol = solve("hurricane", "2", {"theta": "1e-6", "psidot": repr(rate)}, n_eval=n)
+    th = np.array([float(v) for v in sol["theta"]])
+    t = np.array([float(v) for v in sol.t])
+    peaks = [i for i in range(1, n - 1) if th[i] >= th[i - 1] and th[i] > th[i + 1]]
+    measured = (t[peaks[-1]] - t[peaks[0]]) / (len(peaks) - 1)
+    assert abs(measured / period - 1) < 2 * (t[1] - t[0]) / (t[peaks[-1]] - t[peaks[0]]) + 1e-6
+
+
+@pytest.mark.parametrize("factor,stays", [(1.01, True), (0.99, False)])
+def test_hurricane_sleeping_threshold_against_nonlinear_runs(factor, stays):
+    rate = float(threshold("hurricane", "sleeping").value) * factor
+    sol = solve("hurricane", "10", {"theta": "1e-6", "psidot": repr(rate)}, n_eval=401)
+    grew = sol.outcome != "ok" or max(float(v) for v in sol["theta"]) > 1e-3
+    assert grew != stays
+
+
+def test_sleeping_threshold_json(capsys):
+    assert main(["threshold", "hurricane", "sleeping", "--format", "json"]) == 0
+    rec = json.loads(capsys.readouterr().out)
+    assert rec["threshold"]["name"] == "phidot+psidot"
+    assert rec["closed_form"] == "(phidot+psidot)^2 = 4*g*(I1 + 4)/(I3 + 2)**2"
+    assert abs(float(rec["threshold"]["value"]) ** 2 / 980 - 3.75) < 1e-12
+
+
+def test_sleeping_structure_check_rejects_a_broken_model():
+    """Negative control: an extra theta-independent torque term breaks the required form."""
+    from dataclasses import replace
+
+    from verify.studies.thresholds import sleeping_coefficients
+
+    model = get_model("hurricane")
+    broken = replace(model, accelerations=(model.accelerations[0] + phidot, *model.accelerations[1:]))
+    with pytest.raises(RuntimeError, match="not of the form"):
+        sleeping_coefficients(broken)
+
+
+# --- the linear protocol and the variational equations --------------------------------------
+
+def test_linear_protocol_predicts_the_nonlinear_deviation():
+    """At a 1e-6 tilt the full equations follow the closed-form linear prediction to O(tilt x gain)."""
+    from verify.studies.thresholds import linear_deviation, steady_state
+
+    rate = 1.2 * float(threshold("disk", "diameter-spin").value)
+    state = steady_state("disk", "diameter-spin", rate, {})
+    th0 = float(state["theta"])
+    state["theta"] = repr(th0 + 1e-6)
+    sol = solve("disk", "10", state, n_eval=401)
+    measured = max(abs(float(v) - th0) for v in sol["theta"])
+    predicted = linear_deviation("disk", "diameter-spin", rate, "1e-6")
+    assert abs(measured / predicted - 1) < 1e-3
+
+
+def test_nonlinear_bracket_tends_to_the_linear_protocol_bracket():
+    from verify.studies.thresholds import bracket
+
+    lin = bracket("disk", "diameter-spin", "1e-6", criterion="linear", iterations=20)
+    far = bracket("disk", "diameter-spin", "1e-4", iterations=12)
+    near = bracket("disk", "diameter-spin", "1e-6", iterations=12)
+    gap = lambda b: abs((b[0] + b[1]) / 2 - lin[0])  # noqa: E731
+    assert gap(near) < gap(far) / 10
+
+
+@pytest.mark.parametrize("precision,bound", [("double", 100 * 2.0**-52), ("quad", 100 * 2.0**-112)])
+@pytest.mark.parametrize("name,motion", [("disk", "diameter-spin"), ("ring", "diameter-spin"), ("ring", "straight-line")])
+def test_variational_equations_give_the_linear_w2(name, motion, precision, bound):
+    """w2 from the trace of Phi(T) at a quarter nutation period: tens of steps, entries of Phi of
+    order 1-5 and a well-conditioned arccos at T, so the relative error stays within 100 eps."""
+    from verify.studies.thresholds import variational_w2
+
+    lin = threshold(name, motion).value
+    for factor in ("0.9", "1.1"):
+        v = variational_w2(name, motion, lin * mpmath.mpf(factor), precision=precision)
+        assert v.relative_difference < bound, (factor, v.relative_difference)

@@ -160,14 +160,15 @@ def write_report(out="reports") -> None:
         results = evaluate_all(progress=lambda s: say("  " + s))
         timing["claims_seconds"] = round(time.monotonic() - t0, 1)
         t1 = time.monotonic()
-        from .studies.summary import render as render_studies, spindown_rows, threshold_rows
+        from .studies.summary import caption_rows, precision_rows, render as render_studies, spindown_rows, threshold_rows
 
-        studies = {"thresholds": threshold_rows(progress=lambda s: say("  " + s)), "spindown": spindown_rows()}
+        studies = {"thresholds": threshold_rows(progress=lambda s: say("  " + s)), "captions": caption_rows(),
+                   "spindown": spindown_rows(), "precision": precision_rows()}
         timing["studies_seconds"] = round(time.monotonic() - t1, 1)
         rows, timing["conservation_seconds"] = future.result()
     prov = provenance(PRECISIONS)
     cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
-    md = render_markdown(results, cons_md + "\n" + render_studies(studies["thresholds"], studies["spindown"]), prov)
+    md = render_markdown(results, cons_md + "\n" + render_studies(studies), prov)
     md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"
     from .figures import render
 

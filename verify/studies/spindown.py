@@ -14,6 +14,7 @@ are compared with it.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import mpmath
 import sympy as sp
@@ -37,6 +38,7 @@ class SpinDown:
     energy: mpmath.mpf
     paper_source: str
     paper_phidot: mpmath.mpf
+    values: dict = None  # parameter values as mpmath numbers at the working precision
 
     @property
     def relative_error(self):
@@ -93,7 +95,7 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
             paper = mpmath.sqrt(g * (1 - pv["h"]) / ((pv["h"] ** 2 + pv["I1"]) * th))
             source = "Eq. 61"
         shown = {k: mpmath.nstr(v, 20) for k, v in pv.items()}
-        return SpinDown(name, family, th, shown, rate, psi_rate, E, source, paper)
+        return SpinDown(name, family, th, shown, rate, psi_rate, E, source, paper, pv)
 
 
 def to_record(s: SpinDown) -> dict:
@@ -101,3 +103,104 @@ def to_record(s: SpinDown) -> dict:
     return {"model": s.model, "family": s.family, "theta": d(s.theta), "params": s.params,
             "phidot": d(s.phidot), "psidot": d(s.psidot), "energy": d(s.energy),
             "paper_formula": s.paper_source, "paper_phidot": d(s.paper_phidot), "relative_error": d(s.relative_error)}
+
+
+# --- what diverges and what vanishes along a family ---------------------------------------
+
+@lru_cache(maxsize=None)
+def _quantity_functions(name: str):
+    """Numeric functions (theta, phidot, psidot, *params) -> |omega|, |v_C|, |v_P|, N/(Mg), w2.
+
+    v_P is the velocity of the geometric contact point over the floor: v_C plus the rate of
+    the horizontal part of r_P = CP (thetadot = 0 on the family).  w2 is the stability
+    coefficient of the reduced Jacobian (verify/studies/thresholds.py), valid on steady motions.
+    """
+    from models.symbols import omega_body, time_derivative, to_inertial
+
+    from .thresholds import jacobian_entries
+
+    model = get_model(name)
+    r2 = -1
+    r3 = -model.parameter("h").symbol if name == "ring" else 0
+    steady = {thetadot: 0}
+    w = omega_body()
+    omega = sp.sqrt(sum(c**2 for c in w)).subs(steady)
+    vc = [e.subs(steady) for e in model.velocity_xy]
+    rp = to_inertial(sp.Matrix([0, r2, r3]))
+    vp = [(vc[i] + time_derivative(rp[i]).subs(steady)) for i in range(2)]
+    a, c, d, e, f = jacobian_entries(model, {})
+    exprs = [omega, sp.sqrt(vc[0] ** 2 + vc[1] ** 2), sp.sqrt(vp[0] ** 2 + vp[1] ** 2),
+             model.normal_force.subs(steady), -(a + c * e + d * f)]
+    syms = [theta, phi_symbol(), phidot, psidot] + [p.symbol for p in model.parameters]
+    return sp.lambdify(syms, exprs, "mpmath")
+
+
+def phi_symbol():
+    from models.symbols import phi
+
+    return phi
+
+
+def family_quantities(s: SpinDown) -> dict:
+    """|omega|, centre-of-mass speed, contact-point speed, N/(Mg) and w2 at a steady state (50 digits)."""
+    model = get_model(s.model)
+    f = _quantity_functions(s.model)
+    with mpmath.workdps(DPS + 10):
+        args = [s.values[p.name] for p in model.parameters]
+        omega, vc, vp, normal, w2 = f(s.theta, 0, s.phidot, s.psidot, *args)
+    return {"omega": omega, "v_cm": vc, "v_contact": vp, "normal_force": normal, "w2": w2}
+
+
+# --- precision: integrating the families near theta -> 0 -----------------------------------
+
+PRECISIONS = ("double", "quad", "mp:160")
+REFERENCE = "mp:256"
+TURNS = 5
+
+
+@dataclass(frozen=True)
+class PrecisionRun:
+    label: str
+    precision: str
+    theta0: str
+    steps: int
+    t_end: str
+    theta_error: float  # |theta(T) - theta_ref(T)| / theta0
+    omega3_error: float  # |omega3(T) - omega3_ref(T)| / |phidot0|
+    omega3_scale: float  # |omega3| / |phidot| on the state (0 on the cm-at-rest family of the disk)
+    cm_drift: float  # |x, y of C at T - reference| in units of R
+    energy_drift: float
+
+
+def _omega3(y):
+    return y[5] + y[4] * mpmath.cos(y[0])
+
+
+def precision_runs(label: str, state: dict, precisions=PRECISIONS, turns: int = TURNS) -> list:
+    """Integrate ``state`` (decimal strings, disk) for ``turns`` turns of phi at every precision and
+    compare the final state with a reference at REFERENCE; one PrecisionRun per precision."""
+    from verify.integrate import solve
+
+    with mpmath.workdps(80):
+        t_end = mpmath.nstr(2 * mpmath.pi * turns / abs(mpmath.mpf(state["phidot"])), 40)
+    ref = solve("disk", t_end, state, precision=REFERENCE, n_eval=2)
+    with mpmath.workdps(80):
+        yr = [ref.precision.to_mpf(v) for v in ref.y[:, -1]]
+        y0 = [mpmath.mpf(state.get(n, "0")) for n in ("theta", "phi", "psi", "thetadot", "phidot", "psidot")]
+        scale = abs(_omega3(y0) / y0[4])
+    out = []
+    for p in precisions:
+        sol = solve("disk", t_end, state, precision=p, n_eval=2)
+        with mpmath.workdps(80):
+            y = [sol.precision.to_mpf(v) for v in sol.y[:, -1]]
+            out.append(PrecisionRun(
+                label, p, state["theta"], sol.steps, t_end,
+                float(abs(y[0] - yr[0]) / y0[0]), float(abs(_omega3(y) - _omega3(yr)) / abs(y0[4])), float(scale),
+                float(mpmath.sqrt((y[6] - yr[6]) ** 2 + (y[7] - yr[7]) ** 2)),
+                float(sol.invariants["energy"].max_rel_drift)))
+    return out
+
+
+def family_state(theta_value: str, family: str) -> dict:
+    s = spindown("disk", theta_value, family)
+    return {"theta": theta_value, "phidot": mpmath.nstr(s.phidot, 45), "psidot": mpmath.nstr(s.psidot, 45)}

@@ -14,6 +14,7 @@ when w2 > 0, and the threshold is w2 = 0.  The shape is checked, not assumed.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Optional
 
 import mpmath
@@ -26,8 +27,11 @@ MOTIONS = {
     "disk": ("diameter-spin", "straight-line"),
     "sliding-disk": ("diameter-spin",),
     "ring": ("diameter-spin", "straight-line"),
-    "hurricane": ("precession",),
+    "hurricane": ("precession", "sleeping"),
+    "gyroscope": ("sleeping",),
 }
+RATE_NAMES = {"diameter-spin": "phidot0", "straight-line": "psidot0", "precession": "phidot0",
+              "sleeping": "phidot+psidot"}
 OMEGA = sp.Symbol("Omega", positive=True)
 
 
@@ -43,8 +47,11 @@ class Threshold:
     w2: str  # the stability coefficient as a function of the rate (text)
 
 
-def stability_coefficient(model, steady: dict):
-    """w2 at a steady state given as {theta, phidot, psidot} expressions (thetadot = 0)."""
+def jacobian_entries(model, steady: dict) -> tuple:
+    """(a, c, d, e, f) of the reduced Jacobian at a steady state {theta, phidot, psidot} (thetadot = 0).
+
+    The zero pattern of the module docstring is checked, not assumed.
+    """
     X = [theta, thetadot, phidot, psidot]
     F = [thetadot] + list(model.accelerations)
     J = sp.Matrix([[sp.diff(f, x) for x in X] for f in F])
@@ -54,7 +61,12 @@ def stability_coefficient(model, steady: dict):
     for i, j in zero_pattern:
         if sp.simplify(Js[i, j]) != 0:
             raise RuntimeError(f"unexpected Jacobian entry ({i}, {j}) = {Js[i, j]}: not a steady motion of this shape")
-    a, c, d, e, f = Js[1, 0], Js[1, 2], Js[1, 3], Js[2, 1], Js[3, 1]
+    return Js[1, 0], Js[1, 2], Js[1, 3], Js[2, 1], Js[3, 1]
+
+
+def stability_coefficient(model, steady: dict):
+    """w2 at a steady state given as {theta, phidot, psidot} expressions (thetadot = 0)."""
+    a, c, d, e, f = jacobian_entries(model, steady)
     return -(a + c * e + d * f)
 
 
@@ -109,6 +121,8 @@ def threshold(name: str, motion: str, params: Optional[dict] = None, dps: int = 
         return _closed(name, motion, model, steady, subs, shown, dps)
     if name == "ring" and motion == "diameter-spin":
         return _ring_diameter(model, subs, shown, dps)
+    if motion == "sleeping":
+        return _sleeping(name, model, subs, shown, dps)
     return _hurricane_precession(model, subs, shown, dps)
 
 
@@ -176,19 +190,75 @@ def _hurricane_precession(model, subs, shown, dps) -> Threshold:
                      "linearisation of the derived equations along Eq. 72; root by mpmath", "numeric")
 
 
+OMEGA3 = sp.Symbol("omega3", real=True)
+
+
+def sleeping_coefficients(model) -> tuple:
+    """(A, B) of the tilt equation u'' = A u + i B u' near theta = 0, u = theta exp(i phi).
+
+    Euler angles are singular at theta = 0, so the sleeping state is linearised in the
+    complex tilt u instead: with omega3 = psidot + phidot cos(theta) held (its rate is
+    O(theta^2), checked) and theta = eps a, thetadot = eps b, the derived accelerations
+    must take the form
+
+        thetaddot = theta (phidot^2 + A - B phidot) + O(eps^2)
+        theta phiddot + 2 thetadot phidot = B thetadot + O(eps),
+
+    which are the real and imaginary parts of u'' = A u + i B u'.  The form is checked,
+    not assumed.  u ~ exp(i s t) gives s^2 - B s + A = 0: the sleeping state is stable
+    (both s real) when B^2 - 4 A > 0.
+    """
+    eps, a, b = sp.symbols("epsilon a b", positive=True)
+    spin = {psidot: OMEGA3 - phidot * sp.cos(theta)}
+    small = {theta: eps * a, thetadot: eps * b}
+    F1, F2, F3 = [e.subs(spin) for e in model.accelerations]
+    tilt = sp.expand(sp.simplify(sp.series(F1.subs(small), eps, 0, 2).removeO() / (eps * a)))
+    P = sp.Poly(tilt, phidot)
+    if P.degree() != 2 or sp.simplify(P.coeff_monomial(phidot**2) - 1) != 0 or tilt.has(a, b, eps):
+        raise RuntimeError(f"thetaddot/theta near theta = 0 is {tilt}: not of the form phidot^2 + A - B phidot")
+    A = sp.simplify(P.coeff_monomial(1))
+    B = sp.simplify(-P.coeff_monomial(phidot))
+    azimuth = sp.series(F2.subs(small), eps, 0, 1).removeO()
+    if sp.simplify(azimuth - (b / a) * (B - 2 * phidot)) != 0:
+        raise RuntimeError(f"phiddot near theta = 0 is {azimuth}: not (thetadot/theta)(B - 2 phidot)")
+    spin_rate = (F3 + F2 * sp.cos(theta) - phidot * thetadot * sp.sin(theta)).subs(small)
+    if sp.simplify(sp.series(spin_rate, eps, 0, 2).removeO()) != 0:
+        raise RuntimeError("omega3 is not conserved to first order in the tilt near theta = 0")
+    return A, B
+
+
+def _sleeping(name, model, subs, shown, dps) -> Threshold:
+    A, B = sleeping_coefficients(model)
+    disc = sp.simplify(B**2 - 4 * A)
+    roots = [r for r in sp.solve(sp.Eq(disc.subs(OMEGA3, OMEGA), 0), OMEGA)]
+    if len(roots) != 1:
+        raise RuntimeError(f"{name} sleeping: B^2 - 4A = {disc} has roots {roots} in omega3 > 0")
+    crit = sp.simplify(roots[0])
+    with mpmath.workdps(dps):
+        value = mpmath.mpf(sp.N(crit.subs(subs), dps + 10))
+    return Threshold(name, "sleeping", shown, "phidot+psidot", value,
+                     f"(phidot+psidot)^2 = {sp.sstr(sp.factor(crit**2))}",
+                     "linearisation of the derived equations in the complex tilt u = theta exp(i phi) at theta = 0 "
+                     f"(sympy): u'' = A u + i B u', A = {sp.sstr(A)}, B = {sp.sstr(B)}; stable while B^2 > 4A",
+                     sp.sstr(disc))
+
+
 # --- confirmation by the full nonlinear equations ----------------------------------------
 
 GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
 
 
 def steady_state(name: str, motion: str, rate, params: dict) -> dict:
-    """The steady motion at ``rate`` as decimal strings (theta, phidot, psidot), 30 digits."""
+    """The steady motion at ``rate`` as decimal strings (theta, phidot, psidot), 36 digits (beyond quad)."""
     model = get_model(name)
     subs = _params(model, params)
-    pv = {p.name: mpmath.mpf(sp.N(subs[p.symbol], 40)) for p in model.parameters}
-    with mpmath.workdps(30):
+    with mpmath.workdps(40):  # parameters read at 40 digits, not at mpmath's default 15
+        pv = {p.name: mpmath.mpf(sp.N(subs[p.symbol], 40)) for p in model.parameters}
+    with mpmath.workdps(40):
         rate = mpmath.mpf(rate)
-        if name in ("disk", "sliding-disk"):
+        if motion == "sleeping":  # upright; the tilt is added by the caller, with phidot = 0
+            th, phd, psd = mpmath.mpf(0), 0, rate
+        elif name in ("disk", "sliding-disk"):
             th, phd, psd = mpmath.pi / 2, (rate if motion == "diameter-spin" else 0), (rate if motion == "straight-line" else 0)
         elif motion == "straight-line":
             th, phd, psd = mpmath.acot(pv["h"]), 0, rate
@@ -201,8 +271,8 @@ def steady_state(name: str, motion: str, rate, params: dict) -> dict:
         else:
             th = mpmath.acos((pv["I3"] - pv["g"] / rate**2) / (pv["I1"] - pv["I3"]))
             phd = psd = rate
-        return {"theta": mpmath.nstr(th, 30), "phidot": mpmath.nstr(mpmath.mpf(phd), 30),
-                "psidot": mpmath.nstr(mpmath.mpf(psd), 30)}
+        return {"theta": mpmath.nstr(th, 36), "phidot": mpmath.nstr(mpmath.mpf(phd), 36),
+                "psidot": mpmath.nstr(mpmath.mpf(psd), 36)}
 
 
 def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
@@ -212,8 +282,9 @@ def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
     from verify.integrate import solve
 
     state = steady_state(name, motion, rate, params)
-    th0 = mpmath.mpf(state["theta"])
-    state["theta"] = mpmath.nstr(th0 + mpmath.mpf(tilt), 30)
+    with mpmath.workdps(40):
+        th0 = mpmath.mpf(state["theta"])
+        state["theta"] = mpmath.nstr(th0 + mpmath.mpf(tilt), 36)
     sol = solve(name, t_end, state, params, n_eval=401)
     if sol.outcome != "ok":
         return True
@@ -221,19 +292,164 @@ def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
     return dev > GROWTH * float(tilt)
 
 
-def bracket(name: str, motion: str, tilt: str, params=None, iterations: int = 25, t_end: str = "10"):
-    """Bisect the rate between growth and no growth, starting from [lin/2, 2 lin]."""
+def _grid(t_end, n: int = 401):
+    return [float(t_end) * i / (n - 1) for i in range(n)]
+
+
+@lru_cache(maxsize=None)
+def _linear_coefficients(name: str, motion: str, params_key: tuple):
+    """Numeric functions of the steady state giving the linearised theta dynamics (see linear_deviation)."""
+    model = get_model(name)
+    subs = _params(model, dict(params_key))
+    if motion == "sleeping":
+        A, B = sleeping_coefficients(model)
+        return sp.lambdify(OMEGA3, (A.subs(subs), B.subs(subs)), "mpmath")
+    entries = jacobian_entries(model, {})
+    entries = [e.subs(subs) for e in entries]
+    return sp.lambdify((theta, phidot, psidot), entries, "mpmath")
+
+
+def linear_deviation(name, motion, rate, tilt, params=None, t_end="10", n: int = 401, phidot0=0) -> float:
+    """max |theta - theta_steady| on the grid of :func:`grows`, from the linearised equations.
+
+    The protocol of :func:`grows` (theta perturbed by ``tilt``, rates kept) applied to the
+    linearisation.  With the reduced Jacobian's entries a, c, d, e, f, phidot and psidot follow
+    theta (d phidot = e (d theta - tilt), d psidot = f (d theta - tilt)), so
+
+        d theta'' = -w2 d theta - s tilt,   s = c e + d f:
+        d theta(t) = d* + (tilt - d*) cos(sqrt(w2) t),   d* = -s tilt / w2
+
+    (cosh for w2 < 0): the perturbed body oscillates about a neighbouring member of the family
+    of steady motions, displaced by d*, which grows like 1/w2 near the threshold.  For the
+    sleeping motion u'' = A u + i B u' with u(0) = tilt, u'(0) = i phidot0 tilt (default phidot0 = 0,
+    the protocol of :func:`grows`; psidot0 = rate - phidot0).
+    """
+    params = dict(params or {})
+    f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
+    times = _grid(t_end, n)
+    with mpmath.workdps(30):
+        tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
+        if motion == "sleeping":
+            A, B = f(rate)
+            root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
+            l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
+            v0 = 1j * mpmath.mpf(phidot0) * tilt
+            c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
+            return float(max(abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t)) for t in times))
+        s = steady_state(name, motion, rate, params)
+        a, c, d, e, ff = f(*(mpmath.mpf(s[k]) for k in ("theta", "phidot", "psidot")))
+        w2 = -(a + c * e + d * ff)
+        shift = -(c * e + d * ff) * tilt / w2
+        osc = (lambda t: mpmath.cos(mpmath.sqrt(w2) * t)) if w2 > 0 else (lambda t: mpmath.cosh(mpmath.sqrt(-w2) * t))
+        return float(max(abs(shift + (tilt - shift) * osc(t)) for t in times))
+
+
+def linear_grows(name, motion, rate, tilt, params, t_end="10", growth=GROWTH) -> bool:
+    return linear_deviation(name, motion, rate, tilt, params, t_end) > growth * float(tilt)
+
+
+CRITERIA = ("nonlinear", "linear")
+
+
+def bracket(name: str, motion: str, tilt: str, params=None, iterations: int = 25, t_end: str = "10",
+            criterion: str = "nonlinear", growth: float = GROWTH):
+    """Bisect the rate between growth and no growth, starting from [lin/2, 2 lin].
+
+    ``criterion`` is ``"nonlinear"`` (full equations, :func:`grows`) or ``"linear"`` (the same
+    protocol on the linearisation, :func:`linear_deviation`): the nonlinear bracket tends to the
+    linear-protocol one as the tilt shrinks, and that one to the threshold as GROWTH and t_end grow.
+    """
+    if criterion not in CRITERIA:
+        raise ValueError(f"criterion {criterion!r}; allowed: {', '.join(CRITERIA)}")
+    if criterion == "linear":
+        test = lambda *args: linear_grows(*args, growth=growth)  # noqa: E731
+    elif growth != GROWTH:
+        raise ValueError("the nonlinear criterion uses GROWTH; a different growth factor is for criterion='linear'")
+    else:
+        test = grows
     params = dict(params or {})
     lin = threshold(name, motion, params).value
     if lin is None:
         return None
     lo, hi = lin / 2, lin * 2
-    if not grows(name, motion, lo, tilt, params, t_end) or grows(name, motion, hi, tilt, params, t_end):
+    if not test(name, motion, lo, tilt, params, t_end) or test(name, motion, hi, tilt, params, t_end):
         raise RuntimeError(f"{name} {motion}: no sign change of the growth test on [{lo}, {hi}] at tilt {tilt}")
     for _ in range(iterations):
         mid = (lo + hi) / 2
-        if grows(name, motion, mid, tilt, params, t_end):
+        if test(name, motion, mid, tilt, params, t_end):
             lo = mid
         else:
             hi = mid
     return lo, hi
+
+
+# --- confirmation by the variational equations ---------------------------------------------
+
+@dataclass(frozen=True)
+class Variational:
+    """The stability coefficient recovered from the state-transition matrix of the full equations."""
+
+    model: str
+    motion: str
+    rate: mpmath.mpf
+    precision: str
+    period: mpmath.mpf  # T = quarter nutation period pi / (2 sqrt|w2|)
+    w2_linear: mpmath.mpf  # from the sympy linearisation
+    w2_variational: mpmath.mpf  # from trace(Phi_reduced(T)) = 2 + 2 cos(sqrt(w2) T)
+    multipliers: tuple  # eigenvalues of Phi_reduced(T) (complex, double)
+
+    @property
+    def relative_difference(self):
+        with mpmath.workdps(50):
+            return abs(self.w2_variational / self.w2_linear - 1)
+
+
+def variational_w2(name: str, motion: str, rate, params=None, precision: str = "double") -> Variational:
+    """w2 from heyoka's variational equations along the steady motion (order 1, compact mode).
+
+    The reduced block (theta, thetadot, phidot, psidot) of Phi(T) = exp(J T) has eigenvalues
+    1, 1 (the family of steady motions) and exp(+-i sqrt(w2) T), so its trace is
+    2 + 2 cos(sqrt(w2) T) (cosh for w2 < 0); at a quarter nutation period the cosine is
+    best conditioned.  The route shares nothing with the sympy linearisation but the model's
+    accelerations: the derivatives are heyoka's, along the integrated (not assumed) motion.
+    Not available for the sleeping motion (Euler angles are singular at theta = 0).
+    """
+    import heyoka as hy
+    import numpy as np
+
+    from verify.compile import compile_model
+    from verify.integrate import max_step, resolve_parameters, resolve_state
+    from verify.precision import parse_precision
+
+    if motion == "sleeping":
+        raise ValueError("the variational check needs Euler angles regular along the motion; 'sleeping' sits at theta = 0")
+    params = dict(params or {})
+    prec = parse_precision(precision)
+    model = get_model(name)
+    steady = steady_state(name, motion, rate, params)
+    f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
+    with mpmath.workdps(45):  # w2 to beyond quad: the steady state carries 36 digits
+        a, c, d, e, ff = f(*(mpmath.mpf(steady[k]) for k in ("theta", "phidot", "psidot")))
+        w2 = -(a + c * e + d * ff)
+        T = mpmath.pi / (2 * mpmath.sqrt(abs(w2)))
+    pars = resolve_parameters(model, params, prec)
+    y0 = resolve_state(model, steady, prec)
+    compiled = compile_model(model, prec)
+    vsys = hy.var_ode_sys(list(compiled.system), hy.var_args.vars, order=1)
+    kwargs = prec.integrator_kwargs()
+    kwargs["compact_mode"] = True
+    ta = hy.taylor_adaptive(vsys, y0, pars=compiled.system_pars(prec.array(pars.values())), **kwargs)
+    outcome = ta.propagate_until(prec.number(mpmath.nstr(T, 40)), max_delta_t=max_step(y0, pars, prec))[0]
+    if outcome != hy.taylor_outcome.time_limit:
+        raise RuntimeError(f"variational run of {name} {motion} stopped with {outcome}")
+    n = len(y0)
+    phi = ta.state[ta.get_vslice(order=1)].reshape(n, n)
+    idx = (0, 3, 4, 5)  # theta, thetadot, phidot, psidot in STATE order
+    block = [[prec.to_mpf(phi[i, j]) for j in idx] for i in idx]
+    with mpmath.workdps(max(45, prec.digits + 5)):
+        half = (sum(block[i][i] for i in range(4)) - 2) / 2
+        root = mpmath.acos(half) if w2 > 0 else mpmath.acosh(half)
+        w2v = (root / mpmath.mpf(T)) ** 2 * (1 if w2 > 0 else -1)
+    mult = np.linalg.eigvals(np.array([[float(x) for x in row] for row in block]))
+    mult = tuple(sorted((complex(m) for m in mult), key=lambda z: (round(z.real, 9), z.imag)))
+    return Variational(name, motion, mpmath.mpf(rate), prec.name, T, w2, w2v, mult)
