@@ -181,7 +181,7 @@ def parser() -> argparse.ArgumentParser:
 
     th = sub.add_parser("threshold", help="linear stability threshold of a steady motion")
     th.add_argument("model")
-    th.add_argument("motion", help="diameter-spin, straight-line or precession (as the model has them)")
+    th.add_argument("motion", help="diameter-spin, straight-line, precession or sleeping (as the model has them)")
     th.add_argument("--param", action="append", metavar="NAME=VALUE")
     th.add_argument("--nonlinear-tilt", default=None, metavar="TILT",
                     help="also bracket the threshold by bisection on the full equations with this tilt (e.g. 1e-6)")
