@@ -139,6 +139,32 @@ def _conservation_job():
     return rows, round(time.monotonic() - t0, 1)
 
 
+MAPS = (("disk", "diameter-spin"), ("sliding-disk", "diameter-spin"))
+
+
+def _maps(say):
+    """Stability maps of 100 rates x 100 tilts (10 s each) by heyoka batch + ensemble: rows, PNGs, timing."""
+    import numpy as np
+
+    from .studies.maps import render_map, stability_map, switch_bracket
+    from .studies.thresholds import threshold
+
+    rows, images, timing = [], {}, []
+    for model, motion in MAPS:
+        say(f"  stability map {model} {motion} (10^4 trajectories)")
+        lin = float(threshold(model, motion).value)
+        smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100))
+        name = f"map-{model}-{motion}.png"
+        images[name] = render_map(smap)
+        lo, hi = switch_bracket(smap)
+        rows.append({"model": model, "motion": motion, "figure": f"figures/{name}", "trajectories": smap.n_trajectories,
+                     "t_end": smap.t_end, "linear_threshold": f"{lin:.12g}",
+                     "switch_at_tilt_1e-6": [f"{lo:.6g}", f"{hi:.6g}"]})
+        timing.append({"model": model, "motion": motion, "trajectories": smap.n_trajectories,
+                       "wall_seconds": round(smap.wall_seconds, 2), "batch_size": smap.batch_size})
+    return rows, images, timing
+
+
 def write_report(out="reports") -> None:
     from .conservation import PRECISIONS, render_markdown as conservation_markdown
 
@@ -164,6 +190,17 @@ def write_report(out="reports") -> None:
 
         studies = {"thresholds": threshold_rows(progress=lambda s: say("  " + s)), "captions": caption_rows(),
                    "spindown": spindown_rows(), "precision": precision_rows()}
+        study_images = {}
+        studies["maps"], map_images, timing["stability_maps"] = _maps(say)
+        study_images.update(map_images)
+        say("  dissipative spin-down (Moffatt, contact-rate)")
+        from .studies.dissipation import dissipation_study, render_dissipation, to_record as dissipation_record
+
+        t2 = time.monotonic()
+        laws = dissipation_study()
+        studies["dissipation"] = [dissipation_record(s) for s in laws]
+        study_images["dissipation.png"] = render_dissipation(laws)
+        timing["dissipation_seconds"] = round(time.monotonic() - t2, 1)
         timing["studies_seconds"] = round(time.monotonic() - t1, 1)
         rows, timing["conservation_seconds"] = future.result()
     prov = provenance(PRECISIONS)
@@ -176,6 +213,7 @@ def write_report(out="reports") -> None:
     for _, ev in results:
         for fig in ev.figures:
             images[f"{fig.name}.png"] = render(fig)
+    images.update(study_images)
     for name, data in images.items():
         write_atomic(out / "figures" / name, data)
     results_json = {"claims": [result_record(c, e) for c, e in results], "conservation": rows, "studies": studies,

@@ -1,0 +1,630 @@
+"""Stability maps: spin rate x initial tilt, by heyoka's batch mode and ensemble propagation.
+
+Protocol (the one of :func:`verify.studies.thresholds.grows`): start on the steady motion at
+the rate, perturb theta alone by +tilt and keep the rates, so the body moves onto a
+neighbouring member of the two-parameter family of steady motions; the map records the
+largest deviation |theta - theta_steady| from the *unperturbed* steady angle within
+``t_end``.  A stable point oscillates about the neighbouring member (deviation of the order
+of the tilt, times a factor that grows like 1/w2 near the threshold); an unstable one grows
+until the nonlinear terms saturate it, or it leaves.
+
+Only theta, thetadot, phidot, psidot feed back into the dynamics (phi, psi, x, y appear on no
+right-hand side of these four), so the map integrates the reduced 4-dimensional system.
+
+How it runs
+-----------
+* The reduced system is compiled once per model in double as a ``taylor_adaptive_batch``
+  (batch size ``hy.recommended_simd_size()``), parameters as runtime ``par[i]``: the model's
+  parameters in model order, then five per-lane bookkeeping parameters (alive, reason,
+  t_left, lower and upper bound; below).
+* The grid of (tilt, rate) points is cut into batches and run by
+  ``ensemble_propagate_grid_batch`` on threads; each batch's dense output on a fixed time
+  grid is reduced to its maximum deviation as soon as its chunk of the ensemble returns.
+* A run *leaves* when theta reaches theta_steady -+ ``cap`` or an end of the model's domain
+  (whichever is nearer), or when the normal force vanishes (models with a contact).
+
+Terminal events in batch mode
+-----------------------------
+In heyoka 7.13 a terminal event that stops the integration in one lane stops the whole
+batch: the lane sits at its event time, the others at the end of their own last step, and
+``propagate_grid`` fills the remaining rows of *every* lane with NaN.  Restarting would
+leave lanes at different times and the grid unaligned.  So the events here are terminal
+events whose callback returns True (do not stop): the callback freezes its lane only --
+it zeroes the lane's "alive" parameter, which multiplies every right-hand side (x * 1.0 = x
+exactly, so a live lane integrates the plain equations),
+records why and when in two more per-lane parameters, and moves the lane to the middle of
+its bounds with thetadot = 0 so that a frozen lane never sits on a singular end of the
+domain.  A cooldown longer than the run keeps the event from firing again in that lane.
+The whole batch then runs to ``t_end`` in one ``propagate_grid`` call.
+
+Determinism
+-----------
+Each ensemble iteration builds its integrator from a copy of the same template and fills
+its lanes from fixed columns of precomputed arrays, so the result of a point does not depend
+on thread scheduling, and the reductions are plain numpy on fixed-order arrays: two runs give
+identical bytes.  Lanes of a batch do not interact either (each has its own step size and
+events): measured, a point gives the same bytes with other batch partners (rates reversed)
+and with batch size 4 instead of 8.
+"""
+from __future__ import annotations
+
+import io
+import math
+import os
+import time
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Optional
+
+import heyoka as hy
+import mpmath
+import numpy as np
+
+from models import get_model
+from models.symbols import phidot, psidot, theta, thetadot
+
+from . import thresholds
+
+MOTIONS = thresholds.MOTIONS
+GROWTH = thresholds.GROWTH
+CAP = 1.0  # rad: a run that moves this far from the steady angle has left
+SAMPLES_PER_RADIAN = 4  # dense-output samples per radian of the fastest rate (see sample_times)
+CHUNK = 64  # batches per ensemble call: bounds the memory of the dense output held at once
+REASONS = ("stayed", "below", "above", "contact_lost")  # codes 0..3 of StabilityMap.reason
+_EXTRA = ("alive", "reason", "t_left", "lower", "upper")  # per-lane parameters after the model's
+
+
+@dataclass(frozen=True, eq=False)
+class StabilityMap:
+    """A stability map of one steady motion.
+
+    Attributes
+    ----------
+    model, motion : str
+    params : dict
+        Every parameter of the model as a decimal string (defaults filled in).
+    rates : ndarray, shape (n_rates,)
+        Spin rates (the rate that names the motion: phidot0, psidot0, ...).
+    tilts : ndarray, shape (n_tilts,)
+        Initial perturbations of theta (rad, > 0).
+    theta_steady : ndarray, shape (n_rates,)
+        The steady angle at each rate (double nearest the 36-digit value).
+    max_deviation : ndarray, shape (n_tilts, n_rates)
+        max |theta - theta_steady| over the sample times, or ``cap`` when the run left.
+    left : ndarray of bool, shape (n_tilts, n_rates)
+        The run reached the cap, an end of the domain, or lost contact.
+    reason : ndarray of int8, shape (n_tilts, n_rates)
+        Index into ``REASONS``: why the run left (0 when it stayed).
+    t_left : ndarray, shape (n_tilts, n_rates)
+        When it left (NaN when it stayed).
+    linear_threshold : float or None
+        The exact linear threshold of :func:`thresholds.threshold` (None: there is none).
+    t_end, cap : float
+    n_samples : int
+        Dense-output samples per run (uniform in [0, t_end]).
+    n_trajectories, batch_size, threads, n_steps : int
+        Runs (excluding padding lanes), lanes per batch, threads, batch steps taken in all.
+    step_cap : float or None
+        The ``max_delta_t`` every batch ran with (None: uncapped).
+    wall_seconds : float
+        Wall time of the propagation (the only field that changes from run to run).
+    """
+
+    model: str
+    motion: str
+    params: dict
+    rates: np.ndarray
+    tilts: np.ndarray
+    theta_steady: np.ndarray
+    max_deviation: np.ndarray
+    left: np.ndarray
+    reason: np.ndarray
+    t_left: np.ndarray
+    linear_threshold: Optional[float]
+    t_end: float
+    cap: float
+    n_samples: int
+    n_trajectories: int
+    batch_size: int
+    threads: int
+    n_steps: int
+    step_cap: Optional[float]
+    wall_seconds: float
+
+    @property
+    def growth(self) -> np.ndarray:
+        """max_deviation / tilt, shape (n_tilts, n_rates)."""
+        return self.max_deviation / self.tilts[:, None]
+
+    @property
+    def grows(self) -> np.ndarray:
+        """Growth: the run left, or grew by more than GROWTH x the tilt.
+
+        :func:`thresholds.grows` counts only the domain's ends and loss of contact as leaving;
+        here reaching the cap counts too, so for tilts above cap / GROWTH (1e-3) the map calls
+        growth what stays below GROWTH x the tilt yet moves more than ``cap``.
+        """
+        return self.left | (self.growth > GROWTH)
+
+
+# --- input -------------------------------------------------------------------------------
+
+def _check_motion(model: str, motion: str) -> None:
+    if model not in MOTIONS:
+        raise ValueError(f"unknown model {model!r} for a stability map; allowed: {', '.join(MOTIONS)}")
+    if motion not in MOTIONS[model]:
+        raise ValueError(f"unknown motion {motion!r} for model {model!r}; allowed: {', '.join(MOTIONS[model])}")
+
+
+def _positive_vector(name: str, values) -> np.ndarray:
+    """A non-empty 1-D array of positive finite floats, or ValueError naming the bad value."""
+    try:
+        arr = np.array(values, dtype=float)
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"{name}={values!r} must be a sequence of positive numbers ({err})") from None
+    if arr.ndim != 1 or arr.size == 0:
+        raise ValueError(f"{name} must be a non-empty 1-D sequence of positive numbers; got shape {arr.shape}")
+    bad = [v for v in arr if not (math.isfinite(v) and v > 0)]
+    if bad:
+        raise ValueError(f"{name} contains {float(bad[0])!r}; allowed: positive finite numbers")
+    return arr
+
+
+def _positive(name: str, value) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value!r} must be a positive finite number") from None
+    if not (math.isfinite(v) and v > 0):
+        raise ValueError(f"{name}={value!r} must be a positive finite number")
+    return v
+
+
+# --- the reduced system ----------------------------------------------------------------------
+
+@lru_cache(maxsize=None)
+def reduced_system(name: str):
+    """heyoka form of the reduced system of model ``name``, with the freezing factor.
+
+    Returns ``(variables, system, events, n_model_pars)``: ``events`` are
+    ``(name, expression, direction)`` -- theta at the lower and upper bound (runtime
+    parameters), and the normal force where the model has a contact.
+    """
+    from verify.compile import to_heyoka
+
+    model = get_model(name)
+    variables = hy.make_vars("theta", "thetadot", "phidot", "psidot")
+    mapping = dict(zip((theta, thetadot, phidot, psidot), variables))
+    n = len(model.parameters)
+    mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
+    alive, lower, upper = hy.par[n], hy.par[n + 3], hy.par[n + 4]
+    rhs = [thetadot] + list(model.accelerations)
+    allowed = set(mapping)
+    for expr in rhs + ([model.normal_force] if model.normal_force is not None else []):
+        extra = expr.free_symbols - allowed
+        if extra:
+            raise RuntimeError(f"model {name!r}: the reduced system depends on {sorted(map(str, extra))}")
+    system = [(v, to_heyoka(r, mapping) * alive) for v, r in zip(variables, rhs)]
+    th = variables[0]
+    events = [("below", th - lower, hy.event_direction.negative),
+              ("above", th - upper, hy.event_direction.positive)]
+    if model.normal_force is not None:
+        events.append(("contact_lost", to_heyoka(model.normal_force, mapping), hy.event_direction.negative))
+    return tuple(variables), tuple(system), tuple(events), n
+
+
+class _Freeze:
+    """Terminal-event callback that freezes its lane and lets the batch run on (module docstring)."""
+
+    def __init__(self, n_model_pars: int, code: int):
+        self.n = n_model_pars
+        self.code = float(code)
+
+    def __call__(self, ta, d_sgn, lane):
+        n = self.n
+        pars, state = ta.pars, ta.state
+        if pars[n, lane] == 0.0:  # already frozen (two events in one step)
+            return True
+        pars[n, lane] = 0.0
+        pars[n + 1, lane] = self.code
+        pars[n + 2, lane] = ta.time[lane]
+        state[0, lane] = 0.5 * (pars[n + 3, lane] + pars[n + 4, lane])
+        state[1, lane] = 0.0
+        return True
+
+
+@lru_cache(maxsize=None)
+def template(name: str, batch_size: int, cooldown: float):
+    """A batch integrator of the reduced system (compiled once; copied by every ensemble iteration)."""
+    variables, system, events, n = reduced_system(name)
+    model = get_model(name)
+    t_events = [hy.t_event_batch(ex, direction=d, callback=_Freeze(n, i + 1), cooldown=cooldown)
+                for i, (_, ex, d) in enumerate(events)]
+    state = np.ones((4, batch_size))
+    pars = np.zeros((n + len(_EXTRA), batch_size))
+    pars[: n] = np.array([float(p.default) for p in model.parameters])[:, None]
+    return hy.taylor_adaptive_batch(list(system), state, pars=pars, t_events=t_events)
+
+
+# --- the grid of runs ------------------------------------------------------------------------
+
+def sample_times(t_end: float, fastest: float) -> np.ndarray:
+    """The dense-output times: uniform, SAMPLES_PER_RADIAN samples per radian of ``fastest``.
+
+    The nutation frequency of the models here is at most ~1.6 times the fastest rate, so a
+    nutation period holds >= 15 samples and the sampled maximum of an oscillation is low by
+    at most 1 - cos(pi/15) ~ 2%.
+
+    Parameters
+    ----------
+    t_end : float
+        Length of the run (s).
+    fastest : float
+        The fastest rate of the map, or sqrt(g) if larger (rad/s).
+
+    Returns
+    -------
+    ndarray
+        ``ceil(t_end * fastest * SAMPLES_PER_RADIAN) + 1`` times from 0 to ``t_end``.
+    """
+    n = max(2, int(math.ceil(t_end * fastest * SAMPLES_PER_RADIAN)) + 1)
+    return np.linspace(0.0, t_end, n)
+
+
+def _steady(name, motion, rate, params, tmin, tmax) -> dict:
+    """thresholds.steady_state at ``rate``, or ValueError when no such steady motion exists there."""
+    s = thresholds.steady_state(name, motion, repr(rate), params)
+    try:
+        th = float(mpmath.mpf(s["theta"]))
+    except (TypeError, ValueError):
+        th = math.nan
+    if not tmin <= th <= tmax:
+        raise ValueError(f"rate {rate!r} has no steady {motion} of {name!r} (theta = {s['theta']}); allowed: rates "
+                         f"at which the steady motion exists with {tmin:.6g} <= theta <= {tmax:.6g}")
+    return s
+
+
+def _initial_conditions(name, motion, rates, tilts, params, cap):
+    """Per-point initial state, bounds and steady angle, in map order (tilt-major)."""
+    model = get_model(name)
+    dom = model.domain
+    tmin, tmax = float(dom.theta_min), float(dom.theta_max)
+    steady = [_steady(name, motion, float(r), params, tmin, tmax) for r in rates]
+    ths = np.array([float(mpmath.mpf(s["theta"])) for s in steady])
+    n = len(tilts) * len(rates)
+    y0 = np.zeros((4, n))
+    bounds = np.zeros((2, n))
+    with mpmath.workdps(40):
+        for i, tilt in enumerate(tilts):
+            for j, s in enumerate(steady):
+                k = i * len(rates) + j
+                th0 = mpmath.mpf(s["theta"])
+                lo, hi = max(float(th0 - cap), tmin), min(float(th0 + cap), tmax)
+                start = float(th0 + mpmath.mpf(float(tilt)))
+                if not lo < start < hi:
+                    raise ValueError(f"tilt {float(tilt)!r} at rate {float(rates[j])!r} starts theta at {start!r}, "
+                                     f"outside ({lo!r}, {hi!r}); allowed: tilts below the cap {cap} that keep "
+                                     f"theta inside the domain of {name!r}")
+                y0[:, k] = (start, 0.0, float(mpmath.mpf(s["phidot"])), float(mpmath.mpf(s["psidot"])))
+                bounds[:, k] = (lo, hi)
+    return y0, bounds, ths
+
+
+def _lane_arrays(y0, bounds, pars, batch_size):
+    """States and parameters for every lane, padded to whole batches by repeating the last point."""
+    n = y0.shape[1]
+    padded = -(-n // batch_size) * batch_size
+    idx = np.minimum(np.arange(padded), n - 1)
+    states = np.ascontiguousarray(y0[:, idx])
+    p = np.zeros((len(pars) + len(_EXTRA), padded))
+    p[: len(pars)] = np.array(pars)[:, None]
+    m = len(pars)
+    p[m] = 1.0  # alive
+    p[m + 2] = np.nan  # t_left
+    p[m + 3: m + 5] = bounds[:, idx]
+    return states, p
+
+
+@dataclass(frozen=True, eq=False)
+class Runs:
+    """Every lane of a map, ready for the integrators (see :func:`prepare_runs`).
+
+    ``states`` (4, n_lanes) and ``pars`` (n_model_pars + 5, n_lanes) are lane-major, n_lanes a
+    multiple of ``batch_size`` (the last point repeated as padding); the first ``n`` lanes are
+    the map's points in tilt-major order.  ``ref`` is each lane's steady angle.
+    """
+
+    model: str
+    states: np.ndarray
+    pars: np.ndarray
+    ref: np.ndarray
+    grid: np.ndarray
+    step_cap: Optional[float]
+    n: int
+    n_model_pars: int
+    batch_size: int
+    theta_steady: np.ndarray  # per rate
+    model_pars: tuple  # the model's parameters in double, model order
+
+    @property
+    def cooldown(self) -> float:
+        return 2.0 * float(self.grid[-1]) + 1.0
+
+
+def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: dict, cap: float,
+                 step_cap: bool, batch_size: int) -> Runs:
+    """Initial states, per-lane parameters, sample times and step cap of a map (inputs validated)."""
+    from verify.integrate import resolve_parameters
+    from verify.precision import parse_precision
+
+    mdl = get_model(model)
+    pars = [float(v) for v in resolve_parameters(mdl, params, parse_precision("double")).values()]
+    y0, bounds, ths = _initial_conditions(model, motion, rates, tilts, params, cap)
+    fastest = max(float(np.max(np.abs(y0[2:]))), math.sqrt(dict(zip(mdl.parameter_names, pars)).get("g", 1.0)))
+    states, lane_pars = _lane_arrays(y0, bounds, pars, batch_size)
+    n = y0.shape[1]
+    ref = np.tile(ths, len(tilts))
+    ref = np.concatenate([ref, np.full(states.shape[1] - n, ref[-1])])
+    return Runs(model, states, lane_pars, ref, sample_times(t_end, fastest), 1.0 / fastest if step_cap else None,
+                n, len(pars), batch_size, ths, tuple(pars))
+
+
+def propagate(name, states, pars, ref, grid, batch_size, threads, step_cap, chunk=CHUNK):
+    """Run every lane by ensemble propagation of batches; reduce each batch's dense output at once.
+
+    ``states`` (4, n_lanes) and ``pars`` (n_pars, n_lanes) hold every lane's initial state and
+    parameters, n_lanes a multiple of ``batch_size``; ``ref`` (n_lanes) is the angle the
+    deviation is measured from.  The ensemble runs ``chunk`` batches per call, so that only
+    their dense output is held at once.  Returns (max |theta - ref| over ``grid`` per lane,
+    the lanes' final parameters -- alive, reason, t_left --, batch steps taken in all).
+    """
+    ta = template(name, batch_size, 2.0 * float(grid[-1]) + 1.0)  # the cooldown of Runs.cooldown
+    n_batches = states.shape[1] // batch_size
+    kwargs = {"max_workers": threads}
+    if step_cap is not None:
+        kwargs["max_delta_t"] = step_cap
+    deviation = np.empty(states.shape[1])
+    final_pars = np.empty_like(pars)
+    steps = 0
+    for first in range(0, n_batches, chunk):
+        count = min(chunk, n_batches - first)
+        gen = _generator(states, pars, first, batch_size)
+        for i, res in enumerate(hy.ensemble_propagate_grid_batch(ta, grid, count, gen, **kwargs)):
+            cols = slice((first + i) * batch_size, (first + i + 1) * batch_size)
+            deviation[cols], final_pars[:, cols], n_steps = _reduce(name, first + i, res, ref[cols], len(grid))
+            steps += n_steps
+    return deviation, final_pars, steps
+
+
+def _generator(states, pars, first: int, batch_size: int):
+    """The ensemble's generator: iteration i runs batch first + i (fixed columns: deterministic)."""
+    def gen(ta_copy, i):
+        cols = slice((first + i) * batch_size, (first + i + 1) * batch_size)
+        ta_copy.set_time(0.0)
+        ta_copy.state[:] = states[:, cols]
+        ta_copy.pars[:] = pars[:, cols]
+        return ta_copy
+    return gen
+
+
+def _reduce(name, batch: int, res, ref, n_grid: int):
+    """One ensemble result -> (max |theta - ref| per lane, final parameters, steps of the batch)."""
+    local, out = res[0], res[-1]
+    outcomes = [r[0] for r in local.propagate_res]
+    if any(o != hy.taylor_outcome.time_limit for o in outcomes) or out.shape[0] != n_grid:
+        raise RuntimeError(f"batch {batch} of the {name!r} map stopped with {outcomes} at t = "
+                           f"{list(local.time)} (state {local.state.tolist()})")
+    steps = max(int(r[3]) for r in local.propagate_res)
+    return np.max(np.abs(out[:, 0, :] - ref[None, :]), axis=0), local.pars, steps
+
+
+# --- the map ----------------------------------------------------------------------------------
+
+def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None, tilts=None,
+                  t_end: float = 10.0, params: Optional[dict] = None, threads: Optional[int] = None,
+                  cap: float = CAP, step_cap: bool = False, batch_size: Optional[int] = None) -> StabilityMap:
+    """The stability map of a steady motion over spin rates x initial tilts.
+
+    Each point starts on the steady motion at the rate (:func:`thresholds.steady_state`)
+    with theta perturbed by +tilt and the rates unchanged -- the perturbation moves the body
+    onto a neighbouring member of the family of steady motions -- and the map measures the
+    deviation from the *unperturbed* steady angle: max |theta - theta_steady| over
+    :func:`sample_times` within ``t_end``, or ``cap`` when the run left (reached
+    theta_steady -+ cap or an end of the domain, or lost contact).
+
+    Parameters
+    ----------
+    model, motion : str
+        A model and one of its steady motions (``MOTIONS``), e.g. ``"disk"``,
+        ``"diameter-spin"`` or ``"straight-line"``; ``"sliding-disk"``, ``"diameter-spin"``.
+    rates, tilts : sequence of float
+        Positive spin rates (default: 20 rates from 0.5 to 2 times the linear threshold) and
+        positive tilts in rad (default: 1e-6 ... 1e-1, 6 points, log-spaced).
+    t_end : float
+        Length of every run (s).
+    params : dict, optional
+        Model parameters as decimal strings (e.g. ``{"k": "0.5"}`` for the hoop).
+    threads : int, optional
+        Ensemble threads (default: the machine's cores).
+    cap : float
+        Deviation (rad) at which a run counts as left.
+    step_cap : bool
+        Cap the step at 1 / max(fastest rate of the map, sqrt(g)), like
+        :func:`verify.integrate.max_step`.  Off by default: measured on the 100 x 100 disk
+        map it changes no classification, moves max deviations of non-growing runs by at
+        most 3e-9 (relative; round-off carried by the flow's conditioning) and takes 44%
+        more steps (10-30% more wall time).  The cap guards against steps fooled by the
+        vanishing Taylor coefficients of an exactly steady state, which in solve's
+        8-dimensional system bite through x and y; the reduced system has no such component,
+        and every run here starts perturbed (tilt > 0).
+    batch_size : int, optional
+        Lanes per batch (default ``hy.recommended_simd_size()``).
+
+    Returns
+    -------
+    StabilityMap
+        Arrays of shape (len(tilts), len(rates)); ``wall_seconds`` is the propagation alone
+        (compilation, steady states and the sympy threshold excluded).
+
+    Raises
+    ------
+    ValueError
+        Unknown model, motion or parameter; empty or non-positive rates or tilts; a tilt
+        that would start outside the cap or the domain; non-positive t_end, cap or threads.
+    """
+    _check_motion(model, motion)
+    params = dict(params or {})
+    from verify.integrate import resolve_parameters
+    from verify.precision import parse_precision
+
+    resolve_parameters(get_model(model), params, parse_precision("double"))  # names and ranges, before sympy
+    t_end = _positive("t_end", t_end)
+    cap = _positive("cap", cap)
+    tilts = _positive_vector("tilts", np.logspace(-6, -1, 6) if tilts is None else tilts)
+    if rates is not None:
+        rates = _positive_vector("rates", rates)
+    threads = (os.cpu_count() or 1) if threads is None else int(_positive("threads", threads))
+    batch_size = hy.recommended_simd_size() if batch_size is None else int(_positive("batch_size", batch_size))
+    runs = None if rates is None else prepare_runs(model, motion, rates, tilts, t_end, params, cap, step_cap,
+                                                   batch_size)
+    thr = thresholds.threshold(model, motion, params)
+    lin = None if thr.value is None else float(thr.value)
+    if runs is None:
+        if lin is None:
+            raise ValueError(f"{model} {motion} has no linear threshold: give the rates explicitly")
+        rates = np.linspace(0.5 * lin, 2.0 * lin, 20)
+        runs = prepare_runs(model, motion, rates, tilts, t_end, params, cap, step_cap, batch_size)
+    template(model, batch_size, runs.cooldown)  # compile (or load from heyoka's cache) outside the timing
+    start = time.perf_counter()
+    dev, final, steps = propagate(model, runs.states, runs.pars, runs.ref, runs.grid, batch_size, threads,
+                                  runs.step_cap)
+    wall = time.perf_counter() - start
+
+    n, m = runs.n, runs.n_model_pars
+    shape = (len(tilts), len(rates))
+    alive = final[m, :n] != 0.0
+    dev = np.where(alive, dev[:n], cap)
+    return StabilityMap(
+        model=model, motion=motion, params=dict(thr.params), rates=_frozen(rates), tilts=_frozen(tilts),
+        theta_steady=_frozen(runs.theta_steady), max_deviation=_frozen(dev.reshape(shape)),
+        left=_frozen(~alive.reshape(shape)), reason=_frozen(final[m + 1, :n].astype(np.int8).reshape(shape)),
+        t_left=_frozen(final[m + 2, :n].reshape(shape)), linear_threshold=lin, t_end=t_end, cap=cap,
+        n_samples=len(runs.grid), n_trajectories=n, batch_size=batch_size, threads=threads, n_steps=steps,
+        step_cap=runs.step_cap, wall_seconds=wall,
+    )
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    a = np.ascontiguousarray(a)
+    a.setflags(write=False)
+    return a
+
+
+# --- reading a map ------------------------------------------------------------------------
+
+def switch_bracket(smap: StabilityMap, tilt_index: int = 0) -> Optional[tuple]:
+    """The rates between which the classification switches from growth to no growth.
+
+    Parameters
+    ----------
+    smap : StabilityMap
+    tilt_index : int
+        The row (tilt) to read; 0 is the first tilt given.
+
+    Returns
+    -------
+    (float, float) or None
+        Along the row, rates ascending: if every point below some rate grows
+        (``StabilityMap.grows``) and every point from it on does not, the last growing rate
+        and the first stable one; otherwise (no switch, several, or the wrong way round) None.
+    """
+    order = np.argsort(smap.rates)
+    row = smap.grows[tilt_index][order]
+    rates = smap.rates[order]
+    k = int(np.argmin(row)) if not row.all() else len(row)
+    if k == 0 or k == len(row) or not row[:k].all() or row[k:].any():
+        return None
+    return float(rates[k - 1]), float(rates[k])
+
+
+def consistent_with_threshold(smap: StabilityMap, value: float, tilt_index: int = 0) -> bool:
+    """Whether a threshold rate is consistent with the map.
+
+    Parameters
+    ----------
+    smap : StabilityMap
+    value : float
+        A threshold rate (e.g. the exact linear one, or a wrong one in a negative control).
+    tilt_index : int
+        The row (tilt) to read; use the smallest tilt, where the linearisation holds.
+
+    Returns
+    -------
+    bool
+        True when the row switches once from growth to no growth (:func:`switch_bracket`)
+        and the switch brackets ``value`` strictly.
+    """
+    br = switch_bracket(smap, tilt_index)
+    return br is not None and br[0] < float(value) < br[1]
+
+
+# --- the figure ---------------------------------------------------------------------------------
+
+def render_map(smap: StabilityMap) -> bytes:
+    """PNG of the map: x = rate, y = log10(tilt), colour = log10(max deviation / tilt).
+
+    The linear threshold is a vertical red line whose legend label gives its value; the
+    contour where the growth factor reaches GROWTH (the classification of
+    :func:`thresholds.grows`) is white, the edge of the runs that left is dashed black.
+    The title names model, motion and parameters.
+
+    Parameters
+    ----------
+    smap : StabilityMap
+
+    Returns
+    -------
+    bytes
+        The PNG (matplotlib Agg, 72 dpi, no software or date metadata: reproducible bytes).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+
+    ly = np.log10(smap.tilts)
+    colour = np.log10(np.maximum(smap.growth, np.finfo(float).tiny))
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    mesh = ax.pcolormesh(smap.rates, ly, colour, shading="nearest", cmap="viridis")
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label("log10(max |theta - theta_steady| / tilt)")
+    handles = []
+    if smap.linear_threshold is not None:
+        handles.append(ax.axvline(smap.linear_threshold, color="red", lw=1.2,
+                                  label=f"linear threshold {smap.linear_threshold:.6g}"))
+    if len(smap.rates) > 1 and len(smap.tilts) > 1:
+        order = np.argsort(smap.rates)
+        rows = np.argsort(ly)
+        x, y = smap.rates[order], ly[rows]
+        if colour.min() < math.log10(GROWTH) < colour.max():
+            ax.contour(x, y, colour[np.ix_(rows, order)], levels=[math.log10(GROWTH)], colors="white", linewidths=0.9)
+            handles.append(Line2D([], [], color="white", lw=0.9, label=f"growth = {GROWTH}"))
+        if smap.left.any() and not smap.left.all():
+            ax.contour(x, y, smap.left[np.ix_(rows, order)].astype(float), levels=[0.5], colors="black",
+                       linewidths=0.9, linestyles="dashed")
+            handles.append(Line2D([], [], color="black", lw=0.9, ls="dashed",
+                                  label=f"left (|dev| = {smap.cap:g} rad, domain end or contact)"))
+    if handles:
+        ax.legend(handles=handles, loc="upper right", fontsize=7, facecolor="0.85")
+    rate_name = thresholds.RATE_NAMES.get(smap.motion, "rate")
+    ax.set_xlabel(f"spin rate {rate_name} (rad/s)")
+    ax.set_ylabel("log10(initial tilt / rad)")
+    shown = ", ".join(f"{k} = {float(v):g}" for k, v in smap.params.items())
+    ax.set_title(f"{smap.model}, {smap.motion} ({shown}): growth of a theta perturbation in {smap.t_end:g} s",
+                 fontsize=9)
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=72, metadata={"Software": None})
+    plt.close(fig)
+    return buf.getvalue()
