@@ -20,14 +20,16 @@ import pytest
 
 from verify import solve
 
-mpmath.mp.dps = 40
 G, K = 980, mpmath.mpf(1) / 4
+DIGITS = mpmath.workdps(40)  # local to these helpers: the global mpmath precision is not touched
 
 
+@DIGITS
 def s(x):
     return mpmath.nstr(x, 38)
 
 
+@DIGITS
 def circular_disk(theta, phidot):
     """Eq. 21, last line, solved for psidot (I1 = k, I3 = 2k)."""
     c, sn = mpmath.cos(theta), mpmath.sin(theta)
@@ -35,26 +37,30 @@ def circular_disk(theta, phidot):
     return {"theta": s(theta), "phidot": s(phidot), "psidot": s(psidot)}
 
 
+@DIGITS
 def steady_hurricane(phidot):
     """Eq. 72: cos(theta) = 2/5 - g/phidot^2 with psidot = phidot (CM at rest)."""
     return {"theta": s(mpmath.acos(mpmath.mpf(2) / 5 - G / phidot**2)), "phidot": s(phidot), "psidot": s(phidot)}
 
 
+@DIGITS
 def spin_down_disk(theta):
     """Eq. 45: phidot = sqrt(g/(k sin theta)), psidot = -phidot cos(theta) (CM at rest)."""
     phidot = mpmath.sqrt(G / (K * mpmath.sin(theta)))
     return {"theta": s(theta), "phidot": s(phidot), "psidot": s(-phidot * mpmath.cos(theta))}
 
 
-CASES = {
-    "straight line (theta = pi/2, phidot = 0)": ("disk", {"theta": s(mpmath.pi / 2), "psidot": "20"}),
-    "diameter spin (theta = pi/2, psidot = 0)": ("disk", {"theta": s(mpmath.pi / 2), "phidot": "80"}),
-    "Eq. 21 circle, theta = 1.3": ("disk", circular_disk(mpmath.mpf("1.3"), mpmath.mpf(5))),
-    "Eq. 21 circle, theta = 1.8": ("disk", circular_disk(mpmath.mpf("1.8"), mpmath.mpf(-5))),
-    "Eq. 72 precession, phidot^2 = 25 g": ("hurricane", steady_hurricane(mpmath.sqrt(25 * G))),
-    "Eq. 45 spin-down, theta = 0.5": ("disk", spin_down_disk(mpmath.mpf("0.5"))),
-    "Eq. 45 spin-down, theta = 0.01": ("disk", spin_down_disk(mpmath.mpf("0.01"))),
-}
+with DIGITS:  # the parameters below are read at 40 digits too
+    HALF_PI = mpmath.pi / 2
+    CASES = {
+        "straight line (theta = pi/2, phidot = 0)": ("disk", {"theta": s(HALF_PI), "psidot": "20"}),
+        "diameter spin (theta = pi/2, psidot = 0)": ("disk", {"theta": s(HALF_PI), "phidot": "80"}),
+        "Eq. 21 circle, theta = 1.3": ("disk", circular_disk(mpmath.mpf("1.3"), mpmath.mpf(5))),
+        "Eq. 21 circle, theta = 1.8": ("disk", circular_disk(mpmath.mpf("1.8"), mpmath.mpf(-5))),
+        "Eq. 72 precession, phidot^2 = 25 g": ("hurricane", steady_hurricane(mpmath.sqrt(25 * G))),
+        "Eq. 45 spin-down, theta = 0.5": ("disk", spin_down_disk(mpmath.mpf("0.5"))),
+        "Eq. 45 spin-down, theta = 0.01": ("disk", spin_down_disk(mpmath.mpf("0.01"))),
+    }
 
 
 def _check(sol, state, bound):
@@ -98,7 +104,8 @@ def test_centre_of_mass_motion_of_exact_solutions():
 def test_a_wrong_steady_state_is_not_steady():
     """Negative control: Eq. 45 with k -> 1.01 k is not a steady motion of the disk."""
     wrong = spin_down_disk(mpmath.mpf("0.5"))
-    wrong["phidot"] = s(mpmath.mpf(wrong["phidot"]) / mpmath.sqrt(mpmath.mpf("1.01")))
+    with DIGITS:
+        wrong["phidot"] = s(mpmath.mpf(wrong["phidot"]) / mpmath.sqrt(mpmath.mpf("1.01")))
     sol = solve("disk", "1", wrong, precision="double", n_eval=101)
     with pytest.raises(AssertionError):
         _check(sol, wrong, 100 * sol.precision.eps * math.sqrt(sol.steps) * 300)

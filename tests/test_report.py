@@ -51,3 +51,18 @@ def test_atomic_write_leaves_the_old_file_on_failure(tmp_path):
         write_atomic(target, Boom())
     assert target.read_text() == "old"
     assert [p.name for p in tmp_path.iterdir()] == ["results.json"]
+
+
+def test_provenance_names_the_sources_commit_and_every_precision():
+    """The commit is the last one that changed the sources (40 hex digits in a git checkout), so
+    regenerating a committed report does not change it; precisions are listed once, in ladder order."""
+    import re
+    import shutil
+
+    from verify.provenance import provenance
+
+    prov = provenance(["quad", "double", "mp:256", "quad", "mp:160"])
+    assert prov["precisions"] == ["double", "quad", "mp:160", "mp:256"]
+    assert set(prov["source_commit"]) == {"commit", "modified"}
+    if shutil.which("git") and (__import__("pathlib").Path(__file__).parent.parent / ".git").exists():
+        assert re.fullmatch(r"[0-9a-f]{40}", prov["source_commit"]["commit"])

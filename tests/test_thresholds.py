@@ -217,6 +217,25 @@ def test_linear_protocol_predicts_the_nonlinear_deviation():
     assert abs(measured / predicted - 1) < 1e-3
 
 
+def test_precession_with_no_threshold_follows_its_linearisation():
+    """Hurricane precession has no threshold (w2 > 0 at every rate); the nonlinear confirmation is
+    that the full equations reproduce the linear extremes of theta - theta_steady, whose lower end
+    2 d*/tilt - 1 depends on the rate.  The difference is a nonlinear effect, O(tilt): measured
+    0.55 x tilt (in units of the tilt) at 1e-3 and 1e-5, so 2 x tilt bounds it.  Negative control:
+    the linear extremes of another rate (1.5 x) are far outside that bound."""
+    from verify.studies.thresholds import linear_path, nonlinear_path
+
+    low = math.sqrt(980 / 0.4)
+    tilt = 1e-4
+    outcome, path = nonlinear_path("hurricane", "precession", 2 * low, repr(tilt), {})
+    lin = linear_path("hurricane", "precession", 2 * low, repr(tilt), {})
+    other = linear_path("hurricane", "precession", 3 * low, repr(tilt), {})
+    assert outcome == "ok"
+    assert abs(min(path) - min(lin)) / tilt <= 2 * tilt
+    assert abs(max(path) - max(lin)) / tilt <= 2 * tilt
+    assert abs(min(path) - min(other)) / tilt > 100 * 2 * tilt
+
+
 def test_nonlinear_bracket_tends_to_the_linear_protocol_bracket():
     from verify.studies.thresholds import bracket
 

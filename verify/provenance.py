@@ -1,14 +1,16 @@
-"""What produced a report: versions, a hash of the source tree, the precisions used."""
+"""What produced a report: versions, the commit and a hash of the sources, the precisions used."""
 from __future__ import annotations
 
 import hashlib
 import os
 import platform
+import subprocess
 import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 SOURCE_DIRS = ("models", "verify")
+SOURCE_PATHS = SOURCE_DIRS + ("pyproject.toml",)
 
 
 def source_hash() -> str:
@@ -20,6 +22,24 @@ def source_hash() -> str:
             h.update(b"\0")
             h.update(path.read_bytes())
     return h.hexdigest()
+
+
+def source_commit() -> dict:
+    """The last git commit that changed the sources, and whether the working tree differs from it.
+
+    The commit of the *sources* (models/, verify/, pyproject.toml), not HEAD: a commit that
+    only adds regenerated reports does not change it, so regenerating a committed report
+    gives the same bytes.  ``None`` outside a git checkout.
+    """
+    def git(*args):
+        return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
+
+    try:
+        commit = git("log", "-1", "--format=%H", "--", *SOURCE_PATHS)
+        modified = bool(git("status", "--porcelain", "--", *SOURCE_PATHS))
+    except (OSError, subprocess.CalledProcessError):
+        return {"commit": None, "modified": None}
+    return {"commit": commit or None, "modified": modified}
 
 
 def versions() -> dict:
@@ -40,7 +60,12 @@ def versions() -> dict:
 
 
 def provenance(precisions) -> dict:
-    return {"versions": versions(), "source_sha256": source_hash(), "precisions": list(precisions)}
+    """Versions, the sources' commit and hash, and the precisions used (ladder order, no repeats)."""
+    from .precision import parse_precision
+
+    used = sorted({parse_precision(p) for p in precisions}, key=lambda p: (p.bits, p.name))
+    return {"versions": versions(), "source_commit": source_commit(), "source_sha256": source_hash(),
+            "precisions": [p.name for p in used]}
 
 
 def write_atomic(path: Path, data: bytes | str) -> None:

@@ -139,7 +139,8 @@ def _conservation_job():
     return rows, round(time.monotonic() - t0, 1)
 
 
-MAPS = (("disk", "diameter-spin"), ("sliding-disk", "diameter-spin"))
+MAPS = (("disk", "diameter-spin"), ("sliding-disk", "diameter-spin"), ("disk", "straight-line"),
+        ("ring", "straight-line"), ("ring", "diameter-spin"))
 
 
 def _maps(say):
@@ -203,7 +204,11 @@ def write_report(out="reports") -> None:
         timing["dissipation_seconds"] = round(time.monotonic() - t2, 1)
         timing["studies_seconds"] = round(time.monotonic() - t1, 1)
         rows, timing["conservation_seconds"] = future.result()
-    prov = provenance(PRECISIONS)
+    from .studies.spindown import PRECISIONS as SPINDOWN_PRECISIONS, REFERENCE as SPINDOWN_REFERENCE
+
+    # every precision a number in the report comes from: the conservation table, the
+    # variational check (double, quad) and the spin-down precision study
+    prov = provenance(PRECISIONS + SPINDOWN_PRECISIONS + (SPINDOWN_REFERENCE,))
     cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
     md = render_markdown(results, cons_md + "\n" + render_studies(studies), prov)
     md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"

@@ -8,7 +8,7 @@ import mpmath
 from verify.precision import parse_precision
 
 from .spindown import FAMILIES, family_quantities, family_state, precision_runs, spindown
-from .thresholds import bracket, threshold, variational_w2
+from .thresholds import GROWTH, bracket, linear_path, nonlinear_path, steady_state, threshold, variational_w2
 
 THRESHOLD_CASES = (
     ("disk", "diameter-spin", {}), ("disk", "diameter-spin", {"k": "0.5"}),
@@ -18,6 +18,8 @@ THRESHOLD_CASES = (
     ("hurricane", "precession", {}), ("hurricane", "sleeping", {}), ("gyroscope", "sleeping", {}),
 )
 TILTS = ("1e-4", "1e-5", "1e-6")
+SCAN_FACTORS = ("1.02", "1.1", "1.5", "2", "3", "5", "10")  # x the slow-spin limit (motions with no threshold)
+SCAN_TILTS = ("1e-3", "1e-5")
 PROTOCOLS = ((1e3, "10"), (1e6, "40"))  # (growth factor, t_end) of the linear-protocol brackets
 THETAS = ("1e-1", "1e-2", "1e-4", "1e-6", "1e-8")
 
@@ -45,6 +47,8 @@ def threshold_rows(progress=None) -> list:
                 lo, hi = bracket(model, motion, "1e-6", params, iterations=30, t_end=t_end, criterion="linear",
                                  growth=growth)
                 row["linear_protocol"].append({"growth": growth, "t_end": t_end, "bracket": [_nstr(lo), _nstr(hi)]})
+        else:
+            row["scan"] = stability_scan(model, motion, params)
         if motion != "sleeping":
             base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(980) / mpmath.mpf("0.4")) * 2
             for factor in ("0.9", "1.1"):
@@ -56,6 +60,34 @@ def threshold_rows(progress=None) -> list:
                         "relative_difference": mpmath.nstr(v.relative_difference, 2),
                         "multipliers": [f"{round(m.real, 6) + 0.0:.6f}{round(m.imag, 6) + 0.0:+.6f}i" for m in v.multipliers]})
         rows.append(row)
+    return rows
+
+
+def stability_scan(model: str, motion: str, params: dict) -> list:
+    """Nonlinear confirmation where the linearisation finds no threshold (hurricane precession).
+
+    Rates from just above the slow-spin limit sqrt(g/I3) (cos(theta0) = 0: the upper ball
+    touches the plane) to 10 times it; the protocol of the brackets (theta + tilt, rates
+    kept, 10 s, full equations in double).  The extremes of theta - theta_steady are compared
+    with the linearisation's d* + (tilt - d*) cos(sqrt(w2) t), whose lower extreme 2 d* - tilt
+    depends on the rate: agreement of both extremes, not just staying bounded, is the check.
+    """
+    with mpmath.workdps(40):
+        pv = {k: mpmath.mpf(v) for k, v in threshold(model, motion, params).params.items()}
+        low = mpmath.sqrt(pv["g"] / pv["I3"])
+    rows = []
+    for factor in SCAN_FACTORS:
+        with mpmath.workdps(40):
+            rate = low * mpmath.mpf(factor)
+        for tilt in SCAN_TILTS:
+            outcome, path = nonlinear_path(model, motion, rate, tilt, params)
+            lin = linear_path(model, motion, rate, tilt, params)
+            tl = float(tilt)
+            rows.append({"factor": factor, "rate": _nstr(rate, 12), "tilt": tilt, "outcome": outcome,
+                         "theta_steady": _nstr(mpmath.mpf(steady_state(model, motion, rate, params)["theta"]), 12),
+                         "nonlinear_range": [f"{min(path) / tl:.6f}", f"{max(path) / tl:.6f}"],
+                         "linear_range": [f"{min(lin) / tl:.6f}", f"{max(lin) / tl:.6f}"],
+                         "stays": outcome == "ok" and max(abs(v) for v in path) <= GROWTH * tl})
     return rows
 
 
@@ -211,6 +243,7 @@ def _threshold_lines(thresholds: list, captions: list) -> list:
         lp = [f"[{p['bracket'][0]}, {p['bracket'][1]}]" for p in r["linear_protocol"]] or ["-", "-"]
         lines.append(f"| {r['model']} | {r['motion']} | {r['params'] or 'defaults'} | {r['rate']} | "
                      f"{r['linear'] or 'none (stable)'} | {r['closed_form'] or '-'} | " + " | ".join(br + lp) + " |")
+    lines += _scan_lines(thresholds)
     lines += [
         "",
         "**Variational confirmation.** heyoka's variational equations (order 1) along the steady motion of the full",
@@ -293,6 +326,30 @@ def _spindown_lines(studies: dict) -> list:
                      f"| {r['omega3_over_phidot']} | {r['omega3_error_over_phidot']} | {r['omega3_relative_error'] or '-'} "
                      f"| {r['omega3_digits_lost'] if r['omega3_digits_lost'] is not None else '-'} | {r['cm_error']} "
                      f"| {r['energy_drift']} |")
+    return lines
+
+
+def _scan_lines(thresholds: list) -> list:
+    lines = []
+    for r in thresholds:
+        if not r.get("scan"):
+            continue
+        stays = all(x["stays"] for x in r["scan"])
+        lines += [
+            "",
+            f"**No threshold: {r['model']} {r['motion']}.** The linearisation finds w2 > 0 at every rate from the slow-spin",
+            "limit sqrt(g/I3) up, so there is nothing to bisect; the nonlinear confirmation is the same protocol at rates",
+            "across that range: the extremes of (theta - theta_steady)/tilt over 10 s of the full equations against those",
+            "of the linearisation (lower extreme 2 d*/tilt - 1, which depends on the rate). "
+            + ("Every run stays, and the extremes agree." if stays else "NOT every run stays: see the table."),
+            "",
+            "| rate / slow-spin limit | rate | theta_steady | tilt | outcome | nonlinear range / tilt | linear range / tilt |",
+            "|---:|---:|---:|---:|---|---|---|",
+        ]
+        for x in r["scan"]:
+            lines.append(f"| {x['factor']} | {x['rate']} | {x['theta_steady']} | {x['tilt']} | {x['outcome']} "
+                         f"| [{x['nonlinear_range'][0]}, {x['nonlinear_range'][1]}] "
+                         f"| [{x['linear_range'][0]}, {x['linear_range'][1]}] |")
     return lines
 
 

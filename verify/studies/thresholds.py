@@ -275,10 +275,13 @@ def steady_state(name: str, motion: str, rate, params: dict) -> dict:
                 "psidot": mpmath.nstr(mpmath.mpf(psd), 36)}
 
 
-def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
-    """Perturb theta alone by ``tilt`` (rates kept: the body moves onto a neighbouring member of the
-    family) and report whether theta leaves its steady value by more than GROWTH x tilt, or the
-    run leaves the model's domain, within ``t_end``."""
+def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
+    """(outcome, theta - theta_steady on the grid) of the full equations under the protocol of :func:`grows`.
+
+    theta is perturbed alone by ``tilt`` (rates kept: the body moves onto a neighbouring member
+    of the family); the deviation is measured from the unperturbed steady angle on the grid of
+    :func:`linear_deviation` (401 points), in double.
+    """
     from verify.integrate import solve
 
     state = steady_state(name, motion, rate, params)
@@ -286,10 +289,21 @@ def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
         th0 = mpmath.mpf(state["theta"])
         state["theta"] = mpmath.nstr(th0 + mpmath.mpf(tilt), 36)
     sol = solve(name, t_end, state, params, n_eval=401)
-    if sol.outcome != "ok":
-        return True
-    dev = max(abs(float(v) - float(th0)) for v in sol["theta"])
-    return dev > GROWTH * float(tilt)
+    return sol.outcome, [float(v) - float(th0) for v in sol["theta"]]
+
+
+def nonlinear_deviation(name, motion, rate, tilt, params, t_end="10") -> tuple:
+    """(outcome, max |theta - theta_steady|) of :func:`nonlinear_path`."""
+    outcome, path = nonlinear_path(name, motion, rate, tilt, params, t_end)
+    return outcome, max(abs(v) for v in path)
+
+
+def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
+    """Perturb theta alone by ``tilt`` (rates kept: the body moves onto a neighbouring member of the
+    family) and report whether theta leaves its steady value by more than GROWTH x tilt, or the
+    run leaves the model's domain, within ``t_end``."""
+    outcome, dev = nonlinear_deviation(name, motion, rate, tilt, params, t_end)
+    return outcome != "ok" or dev > GROWTH * float(tilt)
 
 
 def _grid(t_end, n: int = 401):
@@ -336,12 +350,24 @@ def linear_deviation(name, motion, rate, tilt, params=None, t_end="10", n: int =
             v0 = 1j * mpmath.mpf(phidot0) * tilt
             c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
             return float(max(abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t)) for t in times))
+    return float(max(abs(v) for v in linear_path(name, motion, rate, tilt, params, t_end, n)))
+
+
+def linear_path(name, motion, rate, tilt, params=None, t_end="10", n: int = 401) -> list:
+    """theta - theta_steady on the grid of :func:`grows` from the linearised equations (not sleeping).
+
+    d theta(t) = d* + (tilt - d*) cos(sqrt(w2) t) of :func:`linear_deviation` (cosh for w2 < 0).
+    """
+    params = dict(params or {})
+    f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
+    with mpmath.workdps(30):
+        tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
         s = steady_state(name, motion, rate, params)
         a, c, d, e, ff = f(*(mpmath.mpf(s[k]) for k in ("theta", "phidot", "psidot")))
         w2 = -(a + c * e + d * ff)
         shift = -(c * e + d * ff) * tilt / w2
         osc = (lambda t: mpmath.cos(mpmath.sqrt(w2) * t)) if w2 > 0 else (lambda t: mpmath.cosh(mpmath.sqrt(-w2) * t))
-        return float(max(abs(shift + (tilt - shift) * osc(t)) for t in times))
+        return [float(shift + (tilt - shift) * osc(t)) for t in _grid(t_end, n)]
 
 
 def linear_grows(name, motion, rate, tilt, params, t_end="10", growth=GROWTH) -> bool:
