@@ -152,6 +152,48 @@ def cmd_spindown(args) -> int:
     return 0
 
 
+def cmd_reference(args) -> int:
+    from pathlib import Path
+
+    from . import reference
+
+    directory = Path(args.dir) if args.dir else reference.DIRECTORY
+    say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
+    try:
+        if args.make:
+            if args.precision is not None:
+                raise UsageError("--precision is for --check; --make always runs mp:128 and mp:256")
+            jobs = _positive_int(args.jobs, "--jobs")
+            import time
+
+            t0 = time.monotonic()
+            records = reference.make_set(args.case, jobs=jobs, directory=directory, progress=say)
+            say(f"wrote {len(records)} case(s) to {directory} in {time.monotonic() - t0:.0f} s")
+            return 0
+        checks = reference.check_set(args.precision or "double", args.case, directory, progress=say)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    if args.format == "json":
+        print(json.dumps([c.to_record() for c in checks], indent=2))
+    else:
+        print(reference.render_checks(checks))
+    failed = [c.case for c in checks if not c.ok]
+    if failed:
+        print(f"error: {len(failed)} case(s) out of bound: {', '.join(failed)}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _positive_int(text, what: str) -> int:
+    try:
+        value = int(text)
+    except (TypeError, ValueError):
+        raise UsageError(f"{what} {text!r} is not an integer; allowed: 1, 2, ...") from None
+    if value < 1:
+        raise UsageError(f"{what} {text} must be at least 1")
+    return value
+
+
 def cmd_report(args) -> int:
     from .report import write_report
 
@@ -195,6 +237,17 @@ def parser() -> argparse.ArgumentParser:
     sd.add_argument("--param", action="append", metavar="NAME=VALUE")
     sd.add_argument("--format", choices=("json", "text"), default="text")
     sd.set_defaults(run=cmd_spindown)
+
+    ref = sub.add_parser("reference", help="make or check the reference trajectories (reports/reference/)")
+    job = ref.add_mutually_exclusive_group(required=True)
+    job.add_argument("--make", action="store_true", help="compute the set at mp:128 and mp:256 (tens of minutes)")
+    job.add_argument("--check", action="store_true", help="re-integrate every case and compare with the certified digits")
+    ref.add_argument("--precision", default=None, help="for --check: double (default), long or quad")
+    ref.add_argument("--case", action="append", metavar="NAME", help="only this case (repeatable)")
+    ref.add_argument("--jobs", default="2", help="for --make: processes (default 2)")
+    ref.add_argument("--dir", default=None, help="the set's folder (default: reports/reference)")
+    ref.add_argument("--format", choices=("json", "text"), default="text")
+    ref.set_defaults(run=cmd_reference)
 
     r = sub.add_parser("report", help="run the verification and write reports/")
     r.add_argument("--out", default="reports", help="output folder (default: reports)")

@@ -1,0 +1,257 @@
+"""The reference set on disk: one JSON file per case, an index, and a README.
+
+The format is plain JSON (readable without this package): every number that carries
+certified digits is a decimal string; a double-precision copy sits beside it for
+convenience.  ``FORMAT`` names the layout; a reader should refuse any other.
+
+A case file holds: the model (name, title, the source of its equations, a fingerprint of
+the equations, parameters as exact rationals and as decimals), the conventions, the exact
+initial state, the output grid, the two precisions and their step counts, and for every
+state component and every invariant the columns ``value`` (decimal strings rounded to their
+certified digits), ``digits`` (certified significant digits; null for a value that is 0 in
+both runs), ``abs_error`` (a bound on |value - exact|) and ``double``; then the conditioning
+(:func:`verify.reference.make.conditioning`) and the provenance (versions, sources' commit).
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from pathlib import Path
+
+import sympy as sp
+
+from models import get_model
+from models.symbols import STATE_NAMES
+
+from ..provenance import source_commit, versions, write_atomic
+from .cases import ReferenceCase
+from .make import HIGH, LOW, Run, certified_columns, conditioning, equations_fingerprint, predicted_digits
+
+FORMAT = "rolling-verify reference trajectory, format 1"
+INDEX_FORMAT = "rolling-verify reference set, format 1"
+DIRECTORY = Path(__file__).resolve().parent.parent.parent / "reports" / "reference"
+
+CONVENTIONS = {
+    "angles": "3-1-3 Euler angles (phi, theta, psi), paper Fig. 1: e1 = (cos phi, sin phi, 0) the line of nodes, "
+              "e3 = (sin phi sin theta, -cos phi sin theta, cos theta) the symmetry axis; theta = pi/2 is upright",
+    "state": "theta, phi, psi, thetadot, phidot, psidot, x, y; (x, y) the horizontal position of the centre of mass "
+             "(of the pivot's body for the gyroscope and the effective model: x = y = 0); phi and psi continuous, "
+             "never reduced modulo 2 pi",
+    "angular_velocity": "omega = (thetadot, phidot sin theta, phidot cos theta + psidot) in (e1, e2, e3)",
+    "units": "time in seconds; lengths in units of R (disk, ring) or a (hurricane balls); g is g/R (or g/a) in s^-2; "
+             "energies per m R^2 (disk, ring, smooth-plane disk) or per 2 m a^2 (hurricane balls, gyroscope, effective), "
+             "potential zero on the plane",
+    "parameters": "read once, correctly rounded, at the run's precision from their exact values",
+    "initial_state": "decimal strings, read once, correctly rounded, at the run's precision",
+}
+
+
+def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits: int) -> dict:
+    """The JSON object of one case file."""
+    model = get_model(c.model)
+    params = {}
+    for p in model.parameters:
+        exact = sp.Rational(c.params[p.name]) if p.name in c.params else sp.nsimplify(p.default)
+        params[p.name] = {"exact": str(exact), "decimal": str(sp.N(exact, 40)), "description": p.description}
+    state = certified_columns(low.state, high.state, low_bits, high_bits)
+    invariants = certified_columns(low.invariants, high.invariants, low_bits, high_bits)
+    return {
+        "format": FORMAT,
+        "name": c.name,
+        "description": c.description,
+        "source": c.source,
+        "kind": c.kind,
+        "model": {"name": c.model, "title": model.title, "equations": "derived", "equations_source": model.source,
+                  "equations_sha256": equations_fingerprint(c.model),
+                  "equations_sha256_method": "sha256 of the accelerations, the velocity of C, the closed-form "
+                                             "invariants and N/(Mg), evaluated at three fixed states with the default "
+                                             "parameters at 50 digits and printed to 40 (verify.reference.make)",
+                  "parameters": params, "invariants": list(invariants)},
+        "conventions": CONVENTIONS,
+        "initial_state": {n: c.state.get(n, "0") for n in STATE_NAMES},
+        "t_end": c.t_end,
+        "grid": c.grid(),
+        "precisions": {"low": low.precision, "high": high.precision, "tolerance": "each precision's epsilon",
+                       "steps": {low.precision: low.steps, high.precision: high.steps},
+                       "certified": "value = the high run rounded to the digits on which it and the low run agree; "
+                                    "|value - exact| <= abs_error (one unit in the last digit)"},
+        "state": state,
+        "invariants": invariants,
+        "conditioning": conditioning(c),
+        "provenance": {"versions": versions(), "source_commit": source_commit()["commit"]},
+    }
+
+
+def final_summary(record: dict) -> dict:
+    """Certified digits at the final time and what the conditioning predicts for them."""
+    low_bits = int(record["precisions"]["low"].split(":")[1])
+    steps = record["precisions"]["steps"][record["precisions"]["low"]]
+    scale = reduced_scale(record)
+    rows = {}
+    for n in STATE_NAMES:
+        col = record["state"][n]
+        rows[n] = {"digits": col["digits"][-1],
+                   "predicted": round(predicted_digits(steps, record["conditioning"]["state_row_sum"][n][-1], scale,
+                                                       col["double"][-1], low_bits), 1),
+                   "row_sum": record["conditioning"]["state_row_sum"][n][-1]}
+    certified = [r["digits"] for r in rows.values() if r["digits"] is not None]
+    return {"min_digits_final": min(certified) if certified else None,
+            "median_digits_final": sorted(certified)[len(certified) // 2] if certified else None,
+            "max_row_sum_final": max(r["row_sum"] for r in rows.values()), "components": rows}
+
+
+def reduced_scale(record: dict) -> float:
+    """Y: the largest magnitude the integrator's error control sees (rates, theta, reduced angles 4 pi)."""
+    biggest = 4 * math.pi
+    for n in ("theta", "thetadot", "phidot", "psidot"):
+        biggest = max(biggest, max(abs(v) for v in record["state"][n]["double"]))
+    return biggest
+
+
+def file_sha256(path: Path) -> str:
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+
+
+def dumps(record: dict) -> str:
+    return json.dumps(record, indent=1) + "\n"
+
+
+def index_record(records: list) -> dict:
+    entries = []
+    for r in records:
+        s = final_summary(r)
+        entries.append({"name": r["name"], "file": f"{r['name']}.json", "model": r["model"]["name"], "kind": r["kind"],
+                        "source": r["source"], "t_end": r["t_end"], "grid_points": len(r["grid"]),
+                        "steps": r["precisions"]["steps"], "min_certified_digits_final": s["min_digits_final"],
+                        "median_certified_digits_final": s["median_digits_final"],
+                        "max_row_sum_final": s["max_row_sum_final"],
+                        "sha256": hashlib.sha256(dumps(r).encode()).hexdigest()})
+    used = {(r["precisions"]["low"], r["precisions"]["high"]) for r in records}
+    low, high = sorted(used)[0] if len(used) == 1 else (LOW, HIGH)
+    if len(used) > 1:
+        raise ValueError(f"the cases of one set must share their precisions; found {sorted(used)}")
+    return {"format": INDEX_FORMAT, "precisions": {"low": low, "high": high}, "cases": entries}
+
+
+def write_set(records: list, directory: Path = DIRECTORY) -> None:
+    """Write every case file, the index and the README (each atomically; nothing before all are computed)."""
+    directory = Path(directory)
+    for r in records:
+        write_atomic(directory / f"{r['name']}.json", dumps(r))
+    index = index_record(records)
+    write_atomic(directory / "index.json", json.dumps(index, indent=1) + "\n")
+    write_atomic(directory / "README.md", readme(index))
+
+
+def write_case(record: dict, directory: Path = DIRECTORY) -> None:
+    """Replace one case file and refresh the index and README from the files on disk."""
+    directory = Path(directory)
+    write_atomic(directory / f"{record['name']}.json", dumps(record))
+    names = [e["name"] for e in read_index(directory)["cases"]] if (directory / "index.json").exists() else []
+    if record["name"] not in names:
+        names.append(record["name"])
+    records = [record if n == record["name"] else read_case(directory / f"{n}.json") for n in names]
+    index = index_record(records)
+    write_atomic(directory / "index.json", json.dumps(index, indent=1) + "\n")
+    write_atomic(directory / "README.md", readme(index))
+
+
+def read_case(path: Path) -> dict:
+    """A case file, checked for its format; ``ValueError`` naming the file otherwise."""
+    path = Path(path)
+    try:
+        record = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"no reference case file {path}; run 'python -m verify reference --make'") from None
+    except json.JSONDecodeError as err:
+        raise ValueError(f"{path} is not valid JSON ({err})") from None
+    if record.get("format") != FORMAT:
+        raise ValueError(f"{path} has format {record.get('format')!r}; this reader understands {FORMAT!r}")
+    return record
+
+
+def read_index(directory: Path = DIRECTORY) -> dict:
+    path = Path(directory) / "index.json"
+    try:
+        index = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise ValueError(f"no reference set in {directory} (index.json missing); run 'python -m verify reference --make'") \
+            from None
+    if index.get("format") != INDEX_FORMAT:
+        raise ValueError(f"{path} has format {index.get('format')!r}; this reader understands {INDEX_FORMAT!r}")
+    return index
+
+
+def load_set(directory: Path = DIRECTORY, names=None) -> list:
+    """The case records of the set (all, or those named), each checked against the index's sha256."""
+    directory = Path(directory)
+    index = read_index(directory)
+    known = {e["name"]: e for e in index["cases"]}
+    wanted = list(known) if not names else list(names)
+    out = []
+    for n in wanted:
+        if n not in known:
+            raise ValueError(f"unknown reference case {n!r}; allowed: {', '.join(known)}")
+        record = read_case(directory / known[n]["file"])
+        if file_sha256(directory / known[n]["file"]) != known[n]["sha256"]:
+            raise ValueError(f"{directory / known[n]['file']} does not match the sha256 in index.json: the file was "
+                             "changed after it was made")
+        out.append(record)
+    return out
+
+
+def readme(index: dict) -> str:
+    rows = "\n".join(
+        f"| `{e['name']}` | {e['model']} | {e['kind']} | {e['source']} | {e['t_end']} | {e['grid_points']} | "
+        f"{e['min_certified_digits_final']} | {e['median_certified_digits_final']} | {e['max_row_sum_final']:.2g} |"
+        for e in index["cases"])
+    return f"""# Reference trajectories
+
+Generated by `python -m verify reference --make` (do not edit by hand: `index.json` holds each file's
+sha256). Each case is integrated by heyoka's Taylor method on the equations derived from the vectors
+(`models/rolling.py`) twice, in MPFR at {index['precisions']['low'][3:]} and {index['precisions']['high'][3:]} bits, each at its own epsilon. A stored
+value is the {index['precisions']['high'][3:]}-bit result rounded to the significant digits on which the two runs agree, so it is
+within one unit of its last digit of the exact solution of the stated initial-value problem;
+`abs_error` states that bound for every value.
+
+| case | model | kind | source | t_end (s) | grid points | certified digits at t_end: min | median | max row sum of the transition matrix at t_end |
+|---|---|---|---|---:|---:|---:|---:|---:|
+{rows}
+
+Certified digits fall with the conditioning of the flow: a run at epsilon keeps about
+-log10(eps sqrt(N) R Y / |y|) digits of a component y, with N the steps, R the row sum of the
+state-transition matrix (the `conditioning` block of each file, from heyoka's variational
+equations) and Y the largest rate. These flows are integrable, so R grows about linearly with
+time: runs of 10 s keep 30 digits or more, runs of 100 s lose one or two more; a value that
+happens to pass near zero keeps fewer *significant* digits for the same absolute error.
+
+## Reading a case without this package
+
+```python
+import json
+from decimal import Decimal
+
+case = json.load(open("reports/reference/disk-fig3-lhs.json"))
+assert case["format"] == "{FORMAT}"
+t = [Decimal(s) for s in case["grid"]]                          # exact output times
+theta = [Decimal(s) for s in case["state"]["theta"]["value"]]   # certified decimals
+bound = [Decimal(s) for s in case["state"]["theta"]["abs_error"]]
+start = case["initial_state"]                                   # exact decimal strings
+params = {{k: v["exact"] for k, v in case["model"]["parameters"].items()}}  # exact rationals
+# your integrator's theta at t[-1] should differ from theta[-1] by at most
+# bound[-1] + your own error; case["state"]["theta"]["double"] has the values as floats.
+```
+
+With mpmath, `mpmath.mpf(s)` after `mpmath.mp.dps = 50`. Every file also carries the model's
+parameters (exact rationals and 40-digit decimals), the conventions (Euler angles, state order,
+units), the invariants at every grid point (certified the same way), the conditioning
+(`state_row_sum`, `parameter_term`), the step counts, and the versions and commit that made it.
+
+## Checking an integrator
+
+`python -m verify reference --check [--precision double|long|quad]` re-integrates every case at
+that precision and prints, per case, the largest error against the certified values in units of
+the bound eps (sqrt(N) R* Y + P + |y|) + abs_error, with R* the largest row sum up to that time and P the
+parameter term (`verify/reference/check.py` argues it): a ratio above 1 fails.
+"""
