@@ -115,8 +115,8 @@ def _check_fig15_16_numbers():
     at phidot^2 = 25 g (roots of the derived row 1, mpmath 30 digits)."""
     acc = hurricane.model().accelerations[0].subs({thetadot: 0, psidot: phidot})
     f = sp.lambdify((theta, phidot, I1, I3, g), sp.numer(sp.together(acc)), "mpmath")
-    pars = (mpmath.mpf(7) / 5, mpmath.mpf(2) / 5, mpmath.mpf(980))
     with mpmath.workdps(30):
+        pars = (mpmath.mpf(7) / 5, mpmath.mpf(2) / 5, mpmath.mpf(980))
         th16 = mpmath.findroot(lambda t: f(t, mpmath.sqrt(25 * 980), *pars), (mpmath.mpf("0.9"), mpmath.mpf("1.5")),
                                solver="anderson")
         slow = mpmath.findroot(lambda r: f(mpmath.pi / 2, r, *pars), (mpmath.mpf(30), mpmath.mpf(80)), solver="anderson") ** 2 / 980

@@ -225,10 +225,11 @@ class Prediction:
     def family_remainder(self, th):
         """(time, turns) from theta down to theta = 0 along the family law (closed forms)."""
         fl = family_law(self.law)
-        vals = {theta0: sp.Float(mpmath.nstr(mpmath.mpf(th), 30), 30), disk.k: self.params["k"], g: self.params["g"],
-                C_SYMBOL: self.params["c"]}
-        return (mpmath.mpf(sp.N(fl.time_to_singularity.subs(vals), 30)),
-                mpmath.mpf(sp.N(fl.turns_to_singularity.subs(vals), 30)))
+        with mpmath.workdps(30):
+            vals = {theta0: sp.Float(mpmath.nstr(mpmath.mpf(th), 30), 30), disk.k: self.params["k"], g: self.params["g"],
+                    C_SYMBOL: self.params["c"]}
+            return (mpmath.mpf(sp.N(fl.time_to_singularity.subs(vals), 30)),
+                    mpmath.mpf(sp.N(fl.turns_to_singularity.subs(vals), 30)))
 
     def secant_table(self):
         """(theta_mid, |dtheta/dt|, phidot) between consecutive levels, as :func:`secants` for a run."""

@@ -42,7 +42,8 @@ class SpinDown:
 
     @property
     def relative_error(self):
-        return self.paper_phidot / self.phidot - 1
+        with mpmath.workdps(DPS + 10):  # not at mpmath's global precision
+            return self.paper_phidot / self.phidot - 1
 
 
 def _psidot_ratio(model, family):

@@ -50,10 +50,13 @@ def threshold_rows(progress=None) -> list:
         else:
             row["scan"] = stability_scan(model, motion, params)
         if motion != "sleeping":
-            base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(980) / mpmath.mpf("0.4")) * 2
+            with mpmath.workdps(40):
+                base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(980) / mpmath.mpf("0.4")) * 2
             for factor in ("0.9", "1.1"):
+                with mpmath.workdps(40):
+                    rate = base * mpmath.mpf(factor)
                 for precision in ("double", "quad"):
-                    v = variational_w2(model, motion, base * mpmath.mpf(factor), params, precision)
+                    v = variational_w2(model, motion, rate, params, precision)
                     row["variational"].append({
                         "rate": _nstr(v.rate, 12), "precision": precision, "w2_linear": _nstr(v.w2_linear, 15),
                         "w2_variational": _nstr(v.w2_variational, 15),
