@@ -24,24 +24,41 @@ _BUILDERS = {
 MODEL_NAMES = tuple(_BUILDERS)
 
 
+def _dissipative():
+    from . import dissipative, ring_dissipation
+
+    out = {f"disk+{n}": (lambda eq, n=n: dissipative.dissipative_disk(n)) for n in dissipative.LAW_NAMES}
+    out.update({f"ring+{n}": (lambda eq, n=n: ring_dissipation.dissipative_ring(n)) for n in ring_dissipation.LAW_NAMES})
+    return out
+
+
+#: Models with an explicit dissipative term (derived equations only; energy + work is conserved).
+DISSIPATIVE_NAMES = ("disk+moffatt", "disk+contact-rate", "ring+air-drag", "ring+rolling-friction")
+ALL_NAMES = MODEL_NAMES + DISSIPATIVE_NAMES
+
+
 def sources(name: str) -> tuple:
     """The equation sources a model has ('derived', and 'paper' where transcribed)."""
     _check_name(name)
-    return _BUILDERS[name][1]
+    return _BUILDERS[name][1] if name in _BUILDERS else ("derived",)
 
 
 def get_model(name: str, equations: str = "derived") -> Model:
-    """The model called ``name`` with equations from ``equations`` ('derived' or 'paper')."""
+    """The model called ``name`` with equations from ``equations`` ('derived' or 'paper').
+
+    ``name`` is one of :data:`MODEL_NAMES` (the paper's conservative bodies) or of
+    :data:`DISSIPATIVE_NAMES` (a body with an explicit dissipative term).
+    """
     _check_name(name)
-    builder, allowed = _BUILDERS[name]
+    builder, allowed = _BUILDERS[name] if name in _BUILDERS else (_dissipative()[name], ("derived",))
     if equations not in allowed:
         raise ValueError(f"equations={equations!r} for model {name!r}; allowed: {', '.join(allowed)}")
     return builder(equations)
 
 
 def _check_name(name: str) -> None:
-    if name not in _BUILDERS:
-        raise ValueError(f"unknown model {name!r}; allowed: {', '.join(MODEL_NAMES)}")
+    if name not in ALL_NAMES:
+        raise ValueError(f"unknown model {name!r}; allowed: {', '.join(ALL_NAMES)}")
 
 
-__all__ = ["Model", "MODEL_NAMES", "STATE_NAMES", "get_model", "sources"]
+__all__ = ["ALL_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES", "get_model", "sources"]

@@ -118,6 +118,7 @@ class Model:
     constraints: tuple = field(default_factory=tuple)  # (name, expr == 0 at start, description)
     units: str = ""
     relations: tuple = field(default_factory=tuple)  # (text, predicate(params dict of floats))
+    dissipation: Optional[sp.Expr] = None  # power lost (>= 0) by a dissipative term: E + int dissipation dt is conserved
 
     @property
     def parameter_names(self) -> tuple:

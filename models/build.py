@@ -7,7 +7,7 @@ import sympy as sp
 
 from .base import ChaplyginSystem, Domain, Invariant, Model
 from .rolling import derive
-from .symbols import ACCELERATIONS, g, omega_body, theta
+from .symbols import ACCELERATIONS, g, omega_body
 
 
 def additive_scale(expr: sp.Expr) -> sp.Expr:
@@ -81,3 +81,21 @@ def paper_variant(derived: Model, rows, source: str, I1, I3, r2, r3, contact="ro
     d = derive(I1, I3, r2, r3, contact)
     normal = sp.cancel(1 + d.vertical_acceleration.subs(dict(zip(ACCELERATIONS, acc))) / g)
     return replace(derived, equations="paper", source=source, accelerations=acc, normal_force=normal)
+
+
+def damped_model(d, couple, *, name: str, title: str, source: str, parameters: tuple, domain: Domain,
+                 dissipation: sp.Expr, relations: tuple = ()) -> Model:
+    """A rolling body whose Newton-Euler rows ``d.rows`` also carry a dissipative couple (e1, e2, e3).
+
+    A couple adds no force: the contact force is eliminated as before, the rows become
+    ``rows - couple`` and the energy of the derivation is kept as the first invariant -- not
+    conserved: E + int ``dissipation`` dt is (``dissipation`` = -couple . omega >= 0).
+    """
+    acc = solve_rows(d.rows - couple)
+    on_shell = dict(zip(ACCELERATIONS, acc))
+    normal = sp.factor_terms(sp.cancel(sp.together(1 + d.vertical_acceleration.subs(on_shell) / g)))
+    energy = energy_invariant(d.kinetic, d.potential, "m R^2")
+    energy = replace(energy, description=energy.description + "; not conserved: E + W is (W = work of the couple)")
+    return Model(name=name, title=title, equations="derived", source=source, parameters=parameters,
+                 accelerations=acc, velocity_xy=d.velocity_xy, invariants=(energy,), domain=domain,
+                 normal_force=normal, chaplygin=None, units="m R^2", dissipation=dissipation, relations=relations)

@@ -58,16 +58,16 @@ family and is not constrained by either paper.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import lru_cache
 
 import sympy as sp
 
 from . import disk
 from .base import Model, Parameter
-from .build import energy_invariant, solve_rows
+from .build import damped_model
 from .rolling import derive
-from .symbols import ACCELERATIONS, g, omega_body, theta
+from .symbols import omega_body, theta
 
 
 @dataclass(frozen=True)
@@ -160,24 +160,9 @@ def dissipative_disk(name: str = "moffatt") -> Model:
     conservative models).
     """
     lw = law(name)
-    k = disk.k
-    d = derive(k, 2 * k, disk.R2, disk.R3, "rolling")
-    acc = solve_rows(d.rows - couple(name))
-    on_shell = dict(zip(ACCELERATIONS, acc))
-    normal = sp.factor_terms(sp.cancel(sp.together(1 + d.vertical_acceleration.subs(on_shell) / g)))
-    energy = energy_invariant(d.kinetic, d.potential, "m R^2")
-    energy = replace(energy, description=energy.description + "; not conserved: E + W is (W = work of the couple)")
-    return Model(
-        name=model_name(name),
+    d = derive(disk.k, 2 * disk.k, disk.R2, disk.R3, "rolling")
+    return damped_model(
+        d, couple(name), name=model_name(name),
         title=f"thin disk rolling without slipping, damped by the {lw.name} couple (n = {lw.exponent})",
-        equations="derived",
         source=f"derived rows (Eqs. 8, 17) minus the couple -c sin^-{lw.exponent}(theta) omega_perp; {lw.source}",
-        parameters=disk.PARAMETERS + (coefficient_parameter(name),),
-        accelerations=acc,
-        velocity_xy=d.velocity_xy,
-        invariants=(energy,),
-        domain=disk.DOMAIN,
-        normal_force=normal,
-        chaplygin=None,
-        units="m R^2",
-    )
+        parameters=disk.PARAMETERS + (coefficient_parameter(name),), domain=disk.DOMAIN, dissipation=work_rate(name))

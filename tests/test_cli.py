@@ -58,7 +58,8 @@ def test_models_lists_every_model(capsys):
     code, out, _ = run(capsys, "models", "--format", "json")
     rec = {m["model"]: m for m in json.loads(out)}
     assert code == 0
-    assert set(rec) == {"disk", "ring", "hurricane", "sliding-disk", "gyroscope", "effective"}
+    assert set(rec) == {"disk", "ring", "hurricane", "sliding-disk", "gyroscope", "effective",
+                        "disk+moffatt", "disk+contact-rate", "ring+air-drag", "ring+rolling-friction"}
     assert rec["hurricane"]["invariants"] == ["energy", "jellett", "routh"]
     assert rec["disk"]["parameters"]["k"]["default"] == "1/4"
 
