@@ -20,22 +20,38 @@ from .integrate import max_step, resolve_parameters, resolve_state
 from .precision import parse_precision
 
 
-def transition_norms(model, t_eval, state=None, params=None, equations="derived") -> np.ndarray:
-    """max-row-sum norm of Phi(t, 0) at each time of ``t_eval`` (double precision)."""
+def _variational(model, t_eval, state, params, equations, with_params: bool):
+    """Phi (and d y/d p) on ``t_eval`` from heyoka's order-1 variational equations (double, compact mode).
+
+    Returns ``(blocks, names, par_values)``: per time of ``t_eval`` the n x len(names) matrix of
+    derivatives of the state with respect to ``names`` (the state variables, then the runtime
+    parameters "p<k>" when ``with_params``), and the parameter values in double.
+    """
     prec = parse_precision("double")
     if isinstance(model, str):
         model = get_model(model, equations)
     pars = resolve_parameters(model, params, prec)
     y0 = resolve_state(model, state, prec)
     compiled = compile_model(model, prec)
-    vsys = hy.var_ode_sys(list(compiled.system), hy.var_args.vars, order=1)
-    ta = hy.taylor_adaptive(vsys, y0, pars=compiled.system_pars(prec.array(pars.values())), compact_mode=True)
-    grid = np.concatenate([[0.0], np.asarray(t_eval, dtype=float)]) if float(t_eval[0]) > 0 else np.asarray(t_eval, float)
+    wrt = hy.var_args.vars | hy.var_args.params if with_params else hy.var_args.vars
+    vsys = hy.var_ode_sys(list(compiled.system), wrt, order=1)
+    par_values = compiled.system_pars(prec.array(pars.values()))
+    ta = hy.taylor_adaptive(vsys, y0, pars=par_values, compact_mode=True)
+    times = np.asarray(t_eval, dtype=float)
+    grid = np.concatenate([[0.0], times]) if times[0] > 0 else times
     res = ta.propagate_grid(grid, max_delta_t=float(max_step(y0, pars, prec)))
-    sl = ta.get_vslice(order=1)
-    n = len(y0)
-    norms = [np.abs(row[sl].reshape(n, n)).sum(axis=1).max() for row in res[-1]]
-    return np.array(norms[-len(t_eval):])
+    if res[0] != hy.taylor_outcome.time_limit:
+        raise RuntimeError(f"the variational run of {model.name} stopped early: {res[0]}")
+    names = [str(v) for v in vsys.vargs]
+    sl, n = ta.get_vslice(order=1), len(y0)
+    blocks = [row[sl].reshape(n, len(names)) for row in res[-1][-len(times):]]
+    return blocks, names, par_values
+
+
+def transition_norms(model, t_eval, state=None, params=None, equations="derived") -> np.ndarray:
+    """max-row-sum norm of Phi(t, 0) at each time of ``t_eval`` (double precision)."""
+    blocks, _, _ = _variational(model, t_eval, state, params, equations, with_params=False)
+    return np.array([np.abs(m).sum(axis=1).max() for m in blocks])
 
 
 def sensitivities(model, t_eval, state=None, params=None, equations="derived") -> tuple:
@@ -50,30 +66,12 @@ def sensitivities(model, t_eval, state=None, params=None, equations="derived") -
       (a rounded 1/4, 0.4344, ...) becomes at most ``P e`` in y_i.
 
     From heyoka's order-1 variational equations with respect to the state and the runtime
-    parameters (double, compact mode); ``t_eval`` must be increasing and positive.
+    parameters (double, compact mode).
     """
-    prec = parse_precision("double")
-    if isinstance(model, str):
-        model = get_model(model, equations)
-    pars = resolve_parameters(model, params, prec)
-    y0 = resolve_state(model, state, prec)
-    compiled = compile_model(model, prec)
-    vsys = hy.var_ode_sys(list(compiled.system), hy.var_args.vars | hy.var_args.params, order=1)
-    par_values = compiled.system_pars(prec.array(pars.values()))
-    ta = hy.taylor_adaptive(vsys, y0, pars=par_values, compact_mode=True)
-    grid = np.concatenate([[0.0], np.asarray(t_eval, dtype=float)])
-    res = ta.propagate_grid(grid, max_delta_t=float(max_step(y0, pars, prec)))
-    if res[0] != hy.taylor_outcome.time_limit:
-        raise RuntimeError(f"the variational run of {model.name} stopped early: {res[0]}")
-    n = len(y0)
-    names = [str(v) for v in vsys.vargs]
+    blocks, names, par_values = _variational(model, t_eval, state, params, equations, with_params=True)
     is_par = [re.fullmatch(r"p(\d+)", v) for v in names]  # heyoka names par[k] "p<k>" in vargs
     state_cols = [j for j, m in enumerate(is_par) if m is None]
     par_cols = [(j, int(m.group(1))) for j, m in enumerate(is_par) if m is not None]
-    sl = ta.get_vslice(order=1)
-    R, P = [], []
-    for row in res[-1][1:]:
-        m = row[sl].reshape(n, len(names))
-        R.append(np.abs(m[:, state_cols]).sum(axis=1))
-        P.append(sum((np.abs(m[:, j]) * abs(float(par_values[k])) for j, k in par_cols), np.zeros(n)))
+    R = [np.abs(m[:, state_cols]).sum(axis=1) for m in blocks]
+    P = [sum((np.abs(m[:, j]) * abs(float(par_values[k])) for j, k in par_cols), np.zeros(m.shape[0])) for m in blocks]
     return np.array(R), np.array(P)
