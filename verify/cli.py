@@ -9,7 +9,7 @@ import argparse
 import json
 import sys
 
-from models import MODEL_NAMES, get_model, sources
+from models import ALL_NAMES, get_model, sources
 from models.symbols import STATE_NAMES
 
 from .integrate import IntegrationError, solve
@@ -70,8 +70,8 @@ def cmd_trajectory(args) -> int:
         precision = parse_precision(args.precision)
     except ValueError as err:
         raise UsageError(str(err)) from None
-    if args.model not in MODEL_NAMES:
-        raise UsageError(f"unknown model {args.model!r}; allowed: {', '.join(MODEL_NAMES)}")
+    if args.model not in ALL_NAMES:
+        raise UsageError(f"unknown model {args.model!r}; allowed: {', '.join(ALL_NAMES)}")
     if args.equations not in sources(args.model):
         raise UsageError(f"--equations {args.equations} for model {args.model!r}; allowed: {', '.join(sources(args.model))}")
     try:
@@ -88,7 +88,7 @@ def cmd_trajectory(args) -> int:
 
 def cmd_models(args) -> int:
     records = []
-    for name in MODEL_NAMES:
+    for name in ALL_NAMES:
         m = get_model(name)
         records.append({
             "model": name,
@@ -194,10 +194,58 @@ def _positive_int(text, what: str) -> int:
     return value
 
 
+def cmd_sweep(args) -> int:
+    from pathlib import Path
+
+    from . import sweep
+    from .provenance import write_atomic
+
+    try:
+        spec = sweep.load(args.spec, store=args.store)
+        threads = _positive_int(args.threads, "--threads") if args.threads is not None else None
+        if args.plot:
+            if args.dask is not None:
+                raise UsageError("--plot draws from the store; it does not run anything (drop --dask)")
+            if not Path(spec.store).exists():
+                raise UsageError(f"no store {spec.store} yet: run 'python -m verify sweep {args.spec}' first")
+            from .sweep.plot import render
+
+            with sweep.Store(spec) as store:
+                rows = store.rows()
+            if not rows:
+                raise UsageError(f"the store {spec.store} holds no rows yet")
+            out = Path(args.out) if args.out else Path(spec.store).with_suffix(".png")
+            write_atomic(out, render(spec, rows))
+            print(f"wrote {out} ({len(rows)} of {spec.n_points} trajectories)")
+            return 0
+        result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet)
+    except (sweep.SpecError, sweep.StoreError) as err:
+        raise UsageError(str(err)) from None
+    print(f"{spec.name}: {result.rows} of {spec.n_points} trajectories in {result.store} "
+          f"({result.chunks_run} chunks run, {result.chunks_skipped} already there; {result.where}; "
+          f"{result.seconds:.1f} s)")
+    return 0
+
+
 def cmd_report(args) -> int:
     from .report import write_report
 
-    write_report(args.out)
+    write_report(args.out, bench=not args.no_bench)
+    return 0
+
+
+def cmd_bench(args) -> int:
+    import time
+
+    from .bench import run_benchmarks, write_benchmarks
+
+    try:
+        import scipy  # noqa: F401
+    except ImportError:
+        raise UsageError("the benchmark compares with scipy: pip install scipy (or the project's [bench] extra)") from None
+    t0 = time.monotonic()
+    write_benchmarks(run_benchmarks(quick=args.quick, progress=lambda s: print(s, file=sys.stderr, flush=True)), args.out)
+    print(f"wrote {args.out}/BENCHMARKS.md, benchmarks.json and figures/bench-*.png ({time.monotonic() - t0:.0f} s)")
     return 0
 
 
@@ -206,7 +254,7 @@ def parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
 
     t = sub.add_parser("trajectory", help="integrate one model from one state")
-    t.add_argument("model", help=f"one of: {', '.join(MODEL_NAMES)}")
+    t.add_argument("model", help=f"one of: {', '.join(ALL_NAMES)}")
     t.add_argument("--equations", default="derived", help="derived (default) or paper")
     t.add_argument("--param", action="append", metavar="NAME=VALUE", help="a parameter (repeatable)")
     t.add_argument("--state", action="append", metavar="NAME=VALUE",
@@ -249,9 +297,26 @@ def parser() -> argparse.ArgumentParser:
     ref.add_argument("--format", choices=("json", "text"), default="text")
     ref.set_defaults(run=cmd_reference)
 
+    sw = sub.add_parser("sweep", help="run (or resume) a parameter sweep described by a TOML file")
+    sw.add_argument("spec", help="the sweep's TOML file (e.g. verify/sweep/specs/disk-diameter-spin.toml)")
+    sw.add_argument("--dask", default=None, metavar="ADDRESS",
+                    help="run the chunks on a Dask cluster (tcp://host:port, or 'local' for one on this machine)")
+    sw.add_argument("--plot", action="store_true", help="draw the map(s) from the store instead of running")
+    sw.add_argument("--store", default=None, help="the store file (default: the spec's)")
+    sw.add_argument("--out", default=None, help="with --plot: the PNG (default: the store's name with .png)")
+    sw.add_argument("--threads", default=None, help="threads on this machine (default: every core)")
+    sw.add_argument("--quiet", action="store_true", help="no progress bar")
+    sw.set_defaults(run=cmd_sweep)
+
     r = sub.add_parser("report", help="run the verification and write reports/")
     r.add_argument("--out", default="reports", help="output folder (default: reports)")
+    r.add_argument("--no-bench", action="store_true", help="skip the benchmarks (BENCHMARKS.md is left as it is)")
     r.set_defaults(run=cmd_report)
+
+    b = sub.add_parser("bench", help="benchmarks: work against precision, energy error, sweep throughput, JIT cost")
+    b.add_argument("--out", default="reports", help="output folder (default: reports)")
+    b.add_argument("--quick", action="store_true", help="small sizes (for trying the command; not for the report)")
+    b.set_defaults(run=cmd_bench)
     return ap
 
 

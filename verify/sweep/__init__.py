@@ -1,0 +1,21 @@
+"""Parameter sweeps from a TOML file, stored in SQLite a chunk at a time, resumable, on threads or Dask.
+
+* :mod:`.spec` -- the TOML layout and its validation;
+* :mod:`.engine` -- one chunk: heyoka batch integrators over an ensemble of threads, reductions;
+* :mod:`.store` -- the SQLite store (a chunk per transaction: kill-safe, resumable, no duplicates);
+* :mod:`.runner` -- the chunks still missing, locally or on a Dask cluster, with a progress bar;
+* :mod:`.plot` -- maps from the store.
+
+``python -m verify sweep SPEC.toml [--dask ADDRESS|local] [--plot]``.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from .runner import SweepResult, run_sweep
+from .spec import SpecError, SweepSpec, load, parse
+from .store import Store, StoreError
+
+SPECS = Path(__file__).resolve().parent / "specs"
+
+__all__ = ["SPECS", "SpecError", "Store", "StoreError", "SweepResult", "SweepSpec", "load", "parse", "run_sweep"]
