@@ -240,6 +240,7 @@ def solve(
     t_eval=None,
     n_eval: int = 101,
     events: bool = True,
+    high_accuracy: bool = False,
 ) -> Trajectory:
     """Integrate ``model`` from ``state`` at time 0 to ``t_end``.
 
@@ -261,6 +262,9 @@ def solve(
         Output times in [0, t_end], increasing; default ``n_eval`` equally spaced points.
     events : bool
         Stop at the domain's ends and at loss of contact (default True).
+    high_accuracy : bool
+        heyoka's high-accuracy mode (compensated summation of the Taylor series), for long runs
+        where the energy error should follow Brouwer's law (``python -m verify bench`` measures it).
 
     Raises
     ------
@@ -290,7 +294,7 @@ def solve(
 
     ta = hy.taylor_adaptive(
         list(compiled.system), y0, pars=compiled.system_pars(prec.array(pars.values())), tol=tol_value,
-        t_events=compiled.t_events() if events else [], **prec.integrator_kwargs(),
+        t_events=compiled.t_events() if events else [], high_accuracy=high_accuracy, **prec.integrator_kwargs(),
     )
     outcome, steps, times, states = _propagate(ta, grid, t_end, max_step(y0, pars, prec), prec)
     status, label, message, t_events = _interpret(outcome, compiled, ta)

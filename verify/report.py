@@ -166,7 +166,14 @@ def _maps(say):
     return rows, images, timing
 
 
-def write_report(out="reports") -> None:
+def _reference_check_job(precision: str):
+    from .reference import check_set
+
+    t0 = time.monotonic()
+    return [c.to_record() for c in check_set(precision)], round(time.monotonic() - t0, 1)
+
+
+def write_report(out="reports", bench: bool = True) -> None:
     from .conservation import PRECISIONS, render_markdown as conservation_markdown
 
     import os
@@ -183,6 +190,7 @@ def write_report(out="reports") -> None:
 
     with ProcessPoolExecutor(max_workers=1, mp_context=multiprocessing.get_context("spawn")) as pool:
         future = pool.submit(_conservation_job)
+        quad_future = pool.submit(_reference_check_job, "quad")  # after the conservation table, in that process
         say("claims (the conservation table runs alongside):")
         results = evaluate_all(progress=lambda s: say("  " + s))
         timing["claims_seconds"] = round(time.monotonic() - t0, 1)
@@ -202,15 +210,46 @@ def write_report(out="reports") -> None:
         studies["dissipation"] = [dissipation_record(s) for s in laws]
         study_images["dissipation.png"] = render_dissipation(laws)
         timing["dissipation_seconds"] = round(time.monotonic() - t2, 1)
+        say("  retrograde turn of the ring (sweeps)")
+        from .studies.retrograde import run_study
+
+        t3 = time.monotonic()
+        retro = run_study(progress=lambda s: say("  " + s))
+        for m, st in retro.items():
+            study_images[f"retrograde-{m}.png"] = st.pop("figure")
+            study_images[f"retrograde-{m}-roll.png"] = st.pop("figure_roll")
+        studies["retrograde"] = retro
+        timing["retrograde_seconds"] = round(time.monotonic() - t3, 1)
+        say("  reference set: --check in double and long (quad runs in the second process)")
+        from .reference import check_set
+        from .reference.store import read_index
+
+        t4 = time.monotonic()
+        reference_checks = {p: [c.to_record() for c in check_set(p)] for p in ("double", "long")}
+        timing["reference_check_seconds"] = {"double+long": round(time.monotonic() - t4, 1)}
         timing["studies_seconds"] = round(time.monotonic() - t1, 1)
         rows, timing["conservation_seconds"] = future.result()
+        reference_checks["quad"], timing["reference_check_seconds"]["quad"] = quad_future.result()
+        studies["reference"] = {"index": read_index(), "checks": reference_checks}
     from .studies.spindown import PRECISIONS as SPINDOWN_PRECISIONS, REFERENCE as SPINDOWN_REFERENCE
 
     # every precision a number in the report comes from: the conservation table, the
     # variational check (double, quad) and the spin-down precision study
-    prov = provenance(PRECISIONS + SPINDOWN_PRECISIONS + (SPINDOWN_REFERENCE,))
+    prov = provenance(PRECISIONS + SPINDOWN_PRECISIONS + (SPINDOWN_REFERENCE, "long", "mp:128", "mp:256"))
     cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
-    md = render_markdown(results, cons_md + "\n" + render_studies(studies), prov)
+    from .reference.check import render_markdown as render_reference
+    from .studies.retrograde import render_markdown as render_retrograde
+
+    extra = render_reference(studies["reference"]["index"], studies["reference"]["checks"])
+    extra += render_retrograde(studies["retrograde"])
+    extra += ["", "## Benchmarks (issue 5)", "",
+              "Speed depends on the machine, so the benchmarks are not in this file (which is byte-reproducible): "
+              "`python -m verify bench`, the last stage of `make report`, writes [BENCHMARKS.md](BENCHMARKS.md) and "
+              "`benchmarks.json` -- work against precision against the reference set (heyoka at double, long, quad and "
+              "MPFR; scipy's DOP853, Radau and LSODA; mpmath's odefun), the energy error over 10^6 steps, sweep "
+              "throughput (loop, batch, ensemble, scipy) and the JIT cost with and without heyoka's disk cache, with "
+              "the machine they ran on.", ""]
+    md = render_markdown(results, cons_md + "\n" + render_studies(studies) + "\n".join(extra) + "\n", prov)
     md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"
     from .figures import render
 
@@ -234,3 +273,13 @@ def write_report(out="reports") -> None:
     timing["machine"] = {"platform": platform.platform(), "processor": platform.machine()}
     write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
     say(f"wrote {out}/REPORT.md, report.html, results.json, conservation.md ({timing['total_seconds']} s)")
+    if bench:
+        from .bench import run_benchmarks, write_benchmarks
+
+        say("benchmarks (alone, after everything else):")
+        t5 = time.monotonic()
+        write_benchmarks(run_benchmarks(progress=say), out)
+        timing["bench_seconds"] = round(time.monotonic() - t5, 1)
+        timing["total_seconds"] = round(time.monotonic() - t0, 1)
+        write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
+        say(f"wrote {out}/BENCHMARKS.md, benchmarks.json ({timing['bench_seconds']} s)")
