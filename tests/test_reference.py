@@ -33,10 +33,12 @@ def test_certified_digits_are_the_agreeing_ones():
         high = mpmath.mpf("1.23456789012345678901234567890123456789")
         low = high + mpmath.mpf("3e-25")
         c = certify(low, high, 128, 256)
-    # |low - high| = 3e-25 leaves 24 digits, the 24th within one unit after rounding
-    assert c.digits == 24 and c.text == "1.23456789012345678901235"
+    # 25 digits: rounding moves the value by 3.2e-25, the runs differ by 3e-25, together 6.2e-25, within
+    # one unit (1e-24) of the 25th digit; at 26 digits the same sum would exceed the unit 1e-25
+    assert c.digits == 25 and c.text == "1.234567890123456789012346"
     with mpmath.workprec(300):
-        assert abs(mpmath.mpf(c.text) - high) + abs(low - high) <= mpmath.mpf(c.abs_error)
+        assert abs(mpmath.mpf(c.text) - high) + abs(low - high) <= mpmath.mpf(c.abs_error) == mpmath.mpf("1e-24")
+        assert abs(mpmath.mpf(mpmath.nstr(high, 26)) - high) + abs(low - high) > mpmath.mpf("1e-25")
 
 
 def test_certification_caps_at_the_lower_precision_and_handles_zero_and_carry():
@@ -113,12 +115,21 @@ def test_a_slightly_wrong_parameter_fails_the_check(records):
     assert not wrong.ok and wrong.ratio > 10
 
 
-def test_a_corrupted_reference_value_fails_the_check(records):
-    r = copy.deepcopy(next(r for r in records if r["name"] == "disk-standard-1"))
+def _corrupted(record: dict, relative: str) -> dict:
+    r = copy.deepcopy(record)
     col = r["state"]["theta"]
     with mpmath.workdps(50):
-        col["value"][-1] = mpmath.nstr(mpmath.mpf(col["value"][-1]) * (1 + mpmath.mpf("1e-9")), 40)
-    assert not check_case(r, "double").ok
+        col["value"][-1] = mpmath.nstr(mpmath.mpf(col["value"][-1]) * (1 + mpmath.mpf(relative)), 40)
+    return r
+
+
+def test_a_corrupted_reference_value_fails_the_check(records):
+    """One final value off by 1e-6 fails in double; off by 1e-20 it passes in double (whose bound there is
+    2e-8: eps sqrt(N) R* Y) and fails in quad, whose bound is 1e-16 times smaller."""
+    r = next(r for r in records if r["name"] == "disk-standard-1")
+    assert not check_case(_corrupted(r, "1e-6"), "double").ok
+    slightly = _corrupted(r, "1e-20")
+    assert check_case(slightly, "double").ok and not check_case(slightly, "quad").ok
 
 
 def test_a_reference_for_other_equations_is_refused_as_stale(records):
