@@ -101,7 +101,9 @@ def final_summary(record: dict) -> dict:
              if rows[n]["digits"] is None or (rows[n]["digits"] == 0 and abs(record["state"][n]["double"][-1])
                                               <= float(record["state"][n]["abs_error"][-1]))}
     certified = [r["digits"] for n, r in rows.items() if n not in zeros]
+    weakest = min((n for n in rows if n not in zeros), key=lambda n: rows[n]["digits"], default=None)
     return {"min_digits_final": min(certified) if certified else None,
+            "weakest_component": weakest, "predicted_digits_weakest": rows[weakest]["predicted"] if weakest else None,
             "median_digits_final": sorted(certified)[len(certified) // 2] if certified else None,
             "zero_within_final": zeros,
             "max_row_sum_final": max(r["row_sum"] for r in rows.values()), "components": rows}
@@ -137,6 +139,8 @@ def index_record(records: list) -> dict:
                         "steps": r["precisions"]["steps"], "min_certified_digits_final": s["min_digits_final"],
                         "median_certified_digits_final": s["median_digits_final"],
                         "zero_within_final": s["zero_within_final"],
+                        "weakest_component": s["weakest_component"],
+                        "predicted_digits_weakest": s["predicted_digits_weakest"],
                         "max_row_sum_final": s["max_row_sum_final"],
                         "sha256": hashlib.sha256(dumps(r).encode()).hexdigest()})
     used = {(r["precisions"]["low"], r["precisions"]["high"]) for r in records}

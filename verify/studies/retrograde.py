@@ -136,12 +136,19 @@ def summarise(mechanism: str, results: dict) -> dict:
     disk_turns = [b["retrograde_turn"] for b in bodies if b["body"] == "flat disk" and b["c"] in fell]
     control_turns = sum(_yes(r["retrograde_turn"]) for r in crows)
     reproduces = bool(fell) and all(ring_turns) and not any(disk_turns)
+    by_axis = {}
+    for axis in ("h", "w"):
+        values = next(a.values for a in spec.axes if a.name == axis)
+        by_axis[axis] = [{axis: round(v, 4), "judged": sum(1 for r in judged if abs(r[f"in_{axis}"] - v) < 1e-12),
+                          "turned": sum(_yes(r["retrograde_turn"]) for r in judged if abs(r[f"in_{axis}"] - v) < 1e-12)}
+                         for v in values]
     turned = [r for r in judged if _yes(r["retrograde_turn"])]
     by_spin = sum(r["spin_start"] != r["spin_end"] and r["orbit_start"] == r["orbit_end"] for r in turned)
     by_orbit = sum(r["orbit_start"] != r["orbit_end"] and r["spin_start"] == r["spin_end"] for r in turned)
     return {
         "mechanism": mechanism, "spec": f"verify/sweep/specs/{spec_path(mechanism).name}", "trajectories": len(rows),
         "turns": len(turned), "turns_by_spin_reversal": by_spin, "turns_by_orbit_reversal": by_orbit,
+        "by_h": by_axis["h"], "by_w": by_axis["w"],
         "per_c": per_c, "bodies": bodies, "control_trajectories": len(crows), "control_retrograde": control_turns,
         "control_fell_flat": sum(r["outcome"] == "theta_stop" for r in crows),
         "max_energy_drift": f"{max(r['energy_drift'] for r in rows + crows):.1e}",
@@ -199,6 +206,12 @@ def render_markdown(study: dict) -> list:
                          f"| {pc['fell_flat']} |")
         lines.append(f"| {m}, control c = 0 | 0 | {s['control_trajectories']} | {s['control_retrograde']} | - "
                      f"| {s['control_fell_flat']} |")
+    lines += ["", "Retrograde turns by thickness h and by wall w (runs judged, over the other axis and both c):", "",
+              "| mechanism | " + " | ".join(f"h = {x['h']}" for x in next(iter(study.values()))["by_h"]) + " | "
+              + " | ".join(f"w = {x['w']}" for x in next(iter(study.values()))["by_w"]) + " |",
+              "|---|" + "---:|" * (len(next(iter(study.values()))["by_h"]) + len(next(iter(study.values()))["by_w"]))]
+    for m, s in study.items():
+        lines.append(f"| {m} | " + " | ".join(f"{x['turned']}/{x['judged']}" for x in s["by_h"] + s["by_w"]) + " |")
     lines += ["", "The corners of the maps:", "",
               "| mechanism | body | h | w | c | outcome | t_stop (s) | orbit start/end | spin start/end | retrograde "
               "(at t) | rolling reversed |", "|---|---|---:|---:|---:|---|---:|---|---|---|---|"]
