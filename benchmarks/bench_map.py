@@ -114,7 +114,7 @@ def main(model="disk", motion="diameter-spin", n_rates=100, n_tilts=100):
     n = smap.n_trajectories
     rate_map = n / smap.wall_seconds
     print(f"{model} {motion}: {len(rates)} rates x {len(tilts)} tilts = {n} runs of {smap.t_end:g} s, "
-          f"batch size {smap.batch_size} (hy.recommended_simd_size()), {smap.threads} threads, "
+          f"batch size {smap.batch_size} (2 x hy.recommended_simd_size()), {smap.threads} threads, "
           f"{os.cpu_count()} cores (load average before: {load[0]:.2f}), {smap.n_samples} samples per run, "
           f"no step cap")
     print(f"  map (batch + ensemble): {smap.wall_seconds:.2f} s wall, {rate_map:,.0f} trajectories/s, "

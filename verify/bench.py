@@ -438,6 +438,24 @@ def _throughput(system, pars, ys, T: float, k_scipy: int) -> dict:
             "max_difference_to_loop": {k2: float(f"{v:.2e}") for k2, v in agree.items()}, "scipy_subset": k_scipy}
 
 
+# --- the stability map (issue 4's speed target) ---------------------------------------------------
+
+def stability_map_speed(quick: bool, progress) -> dict:
+    """The report's 100 x 100 map of the disk's diameter spin (10^4 runs of 10 s), timed alone."""
+    from .studies.maps import stability_map
+    from .studies.thresholds import threshold
+
+    n = 10 if quick else 100
+    lin = float(threshold("disk", "diameter-spin").value)
+    rates, tilts = np.linspace(0.5 * lin, 1.5 * lin, n), np.logspace(-6, -1, n)
+    stability_map("disk", "diameter-spin", rates=rates[:4], tilts=tilts[:2])  # warm: JIT, sympy
+    progress(f"  stability map: disk diameter spin, {n * n} trajectories of 10 s")
+    smap = stability_map("disk", "diameter-spin", rates=rates, tilts=tilts)
+    return {"trajectories": smap.n_trajectories, "t_end": smap.t_end, "wall_seconds": round(smap.wall_seconds, 2),
+            "per_second": round(smap.n_trajectories / smap.wall_seconds), "batch_size": smap.batch_size,
+            "threads": smap.threads, "target_seconds": 10.0}
+
+
 # --- compile cost ---------------------------------------------------------------------------------
 
 _COMPILE_SCRIPT = r"""
@@ -517,6 +535,7 @@ def run_benchmarks(quick: bool = False, progress=None) -> dict:
                                  "same_accuracy_long": same_accuracy_speedup(wp["long"]) if wp["long"] else {}}
     results["energy"] = energy_growth(quick, say)
     results["sweep"] = sweep_throughput(quick, say)
+    results["stability_map"] = stability_map_speed(quick, say)
     results["compile"] = compile_cost(quick, say)
     results["wall_seconds"] = round(time.monotonic() - t0, 1)
     return results
@@ -620,6 +639,14 @@ def render_markdown(r: dict) -> str:
                   "amplified by the flow's conditioning (last column; the ensemble of scalar integrators is the loop, "
                   "bit for bit). Each of these runs takes ~3,000 Taylor steps of order 20: the cost is the steps, not "
                   "the bookkeeping.", "",
+              "## Stability map (issue 4)", "",
+              f"The report's map of the disk's spin about a vertical diameter, {r['stability_map']['trajectories']:,} "
+              f"trajectories of {r['stability_map']['t_end']:g} s (reduced system, batch size "
+              f"{r['stability_map']['batch_size']}, ensemble on {r['stability_map']['threads']} threads, run alone): "
+              f"{r['stability_map']['wall_seconds']} s, {r['stability_map']['per_second']:,} trajectories per second "
+              f"(target: under {r['stability_map']['target_seconds']:g} s). Most of its runs are near-steady or leave "
+              "early, so they take fewer steps than the sweep above. `python benchmarks/bench_map.py` compares it with "
+              "a scalar loop and plain batch mode.", "",
               "## Compile cost", "",
               "Fresh Python processes: first with an empty heyoka disk cache (`HEYOKA_CACHE_DIR` a new folder), then a "
               "second process with the cache the first one left. 'again' is a second integrator in the same process "
