@@ -37,7 +37,12 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     eps_run = next(a for a in data["work_precision"]["attempts"] if a["setting"] == "tol eps" and a["method"] == "heyoka double")
     loose = next(a for a in data["work_precision"]["attempts"] if a["setting"] == "rtol=atol 1e-06")
     assert eps_run["error"] < loose["error"]  # accuracy, not time
-    assert data["sweep"]["max_difference_to_loop"]["ensemble"] == 0.0  # same integrator, same bits
+    for system in data["sweep"]["systems"].values():
+        assert system["max_difference_to_loop"]["ensemble"] == 0.0  # same integrator, same bits
+    by_tol = data["sweep"]["tolerances"]
+    assert [t["tol"] for t in by_tol] == ["eps", "1e-12", "1e-09", "1e-06"]
+    assert by_tol[0]["max_difference_to_eps"] == 0.0 < by_tol[-1]["max_difference_to_eps"]
+    assert by_tol[-1]["order"] < by_tol[0]["order"]
     assert (tmp_path / "BENCHMARKS.md").read_text().startswith("# Benchmarks")
     assert (tmp_path / "figures" / "bench-work-precision.png").read_bytes()[:4] == b"\x89PNG"
     assert "Machine:" in render_markdown(data)

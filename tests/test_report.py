@@ -66,3 +66,27 @@ def test_provenance_names_the_sources_commit_and_every_precision():
     assert set(prov["source_commit"]) == {"commit", "modified"}
     if shutil.which("git") and (__import__("pathlib").Path(__file__).parent.parent / ".git").exists():
         assert re.fullmatch(r"[0-9a-f]{40}", prov["source_commit"]["commit"])
+
+
+def test_committed_results_carry_no_wall_times():
+    """results.json must be the same bytes whenever the same sources run on the same versions, so
+    wall times go to timing.json only. Any key naming seconds or elapsed time in the committed
+    results is a leak (a retrograde-study 'seconds' once made two fresh runs differ)."""
+    import pathlib
+
+    path = pathlib.Path(__file__).parent.parent / "reports" / "results.json"
+    if not path.exists():
+        pytest.skip("no committed results.json")
+
+    def keys(node):
+        if isinstance(node, dict):
+            for k, v in node.items():
+                yield k
+                yield from keys(v)
+        elif isinstance(node, list):
+            for v in node:
+                yield from keys(v)
+
+    leaks = sorted({k for k in keys(json.loads(path.read_text()))
+                    if k == "seconds" or k.endswith("_seconds") or k in {"elapsed", "wall_time"}})
+    assert not leaks, f"wall-time keys in results.json: {leaks}"

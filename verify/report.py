@@ -218,6 +218,8 @@ def write_report(out="reports", bench: bool = True) -> None:
         for m, st in retro.items():
             study_images[f"retrograde-{m}.png"] = st.pop("figure")
             study_images[f"retrograde-{m}-roll.png"] = st.pop("figure_roll")
+            # wall time belongs in timing.json: results.json must be the same bytes on every run
+            timing.setdefault("retrograde_sweep_seconds", {})[m] = st.pop("seconds")
         studies["retrograde"] = retro
         timing["retrograde_seconds"] = round(time.monotonic() - t3, 1)
         say("  reference set: --check in double and long (quad runs in the second process)")
