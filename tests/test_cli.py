@@ -96,6 +96,17 @@ def test_bad_input_exits_2_with_a_clear_message(capsys, argv, message):
     assert message in err, err
 
 
+@pytest.mark.parametrize("command", [["report"], ["bench", "--quick"]])
+def test_an_unwritable_output_folder_is_refused_before_anything_runs(tmp_path, capsys, command):
+    """The folder is checked first: a report or a benchmark does not run for minutes and then fail."""
+    blocker = tmp_path / "a-file"
+    blocker.write_text("x")
+    code, out, err = run(capsys, *command, "--out", str(blocker / "reports"))
+    assert code == 2 and out == ""
+    assert "--out: cannot write to the folder" in err and str(blocker / "reports") in err
+    assert blocker.read_text() == "x"
+
+
 def test_exit_status_from_a_real_process():
     env = dict(os.environ, PYTHONPATH=ROOT)
     bad = subprocess.run([sys.executable, "-m", "verify", "trajectory", "disk", "--t-end", "1", "--param", "k=-1"],

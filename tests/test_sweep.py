@@ -120,6 +120,8 @@ def test_a_sweep_fills_its_store_once_and_resumes_without_repeating(tmp_path):
     assert [r[0] for r in rows] == list(range(24))
     with Store(spec) as store:
         got = store.rows()
+    # ~600 Taylor steps in 2 s: round-off walks the energy by ~eps sqrt(N) = 5e-15 of its scale;
+    # 1e-13 is 20x that (measured: 7e-16)
     assert all(r["outcome"] == "ok" and r["energy_drift"] < 1e-13 for r in got)
     # below the Eq. 41 threshold (28) the tilt grows a thousandfold within 2 s; above it the body
     # oscillates about a neighbouring steady motion displaced by ~1/w2 (growth 14 at 17% above)
@@ -195,11 +197,17 @@ def test_plot_draws_the_map_from_the_store(tmp_path, capsys):
     (["sweep", "/nonexistent.toml"], "no sweep spec"),
     (["sweep", "{spec}", "--threads", "0"], "--threads 0 must be at least 1"),
     (["sweep", "{spec}", "--plot", "--dask", "local"], "--plot draws from the store"),
+    (["sweep", "{spec}", "--dask", "nowhere", "--quiet"], "--dask 'nowhere': no Dask scheduler there"),
+    (["sweep", "{spec}", "--store", "{junk}", "--quiet"], "file is not a database"),
+    (["sweep", "{spec}", "--store", "{junk}/under-a-file.sqlite", "--quiet"], "cannot open the sweep store"),
 ])
 def test_sweep_bad_input(tmp_path, capsys, argv, message):
     path = small(tmp_path)
-    assert main([a.format(spec=path) for a in argv]) == 2
+    junk = tmp_path / "junk.sqlite"
+    junk.write_bytes(b"not a database")
+    assert main([a.format(spec=path, junk=junk) for a in argv]) == 2
     assert message in capsys.readouterr().err
+    assert junk.read_bytes() == b"not a database"  # a refused store is left as it was
 
 
 # --- the engine against the scalar integrator ---------------------------------------------------
@@ -248,18 +256,43 @@ def test_ring_dissipation_loses_energy_at_the_rate_it_says(law):
             assert abs(sp.N(a.subs(st).subs({**pv, c: 0}) - b.subs(st).subs(rp), 30)) < 1e-20
 
 
-def test_dissipative_sweep_keeps_energy_plus_work(tmp_path):
-    """E + W = E(0) along every run of a short ring+air-drag sweep (to 1e-13 relative: ~1e3 eps over
-    ~1e3 steps, the bound of the dissipation study)."""
+def short_air_drag_sweep(tmp_path):
+    """The shipped ring+air-drag spec cut to 8 runs of 3 s."""
     text = (SPECS / "ring-retrograde-air-drag.toml").read_text()
     text = text.replace("t_end = 120", "t_end = 3").replace("samples = 12001", "samples = 301") \
                .replace("count = 6", "count = 2")
-    spec = parse(text, store=str(tmp_path / "ring.sqlite"))
+    return parse(text, store=str(tmp_path / "ring.sqlite"))
+
+
+def test_dissipative_sweep_keeps_energy_plus_work(tmp_path):
+    """E + W = E(0) along every run of a short ring+air-drag sweep (to 1e-13 relative: ~1e3 eps over
+    ~1e3 steps, the bound of the dissipation study)."""
+    spec = short_air_drag_sweep(tmp_path)
     run_sweep(spec, threads=2, progress=False)
     with Store(spec) as store:
         rows = store.rows()
     assert len(rows) == spec.n_points == 8
     assert max(r["energy_drift"] for r in rows) < 1e-13
+
+
+def test_energy_drift_column_sees_unaccounted_work(tmp_path, monkeypatch):
+    """Negative control for the column above: the same sweep with the work W dropped from the balance
+    (samples' W zeroed before the reduction) must show the energy the couple removed."""
+    from verify.sweep import engine
+
+    reduce = engine._reduce
+
+    def without_work(spec, sysm, index, grid, samples, *rest):
+        samples = samples.copy()
+        samples[:, 8] = 0.0
+        return reduce(spec, sysm, index, grid, samples, *rest)
+
+    monkeypatch.setattr(engine, "_reduce", without_work)
+    spec = short_air_drag_sweep(tmp_path)
+    run_sweep(spec, threads=2, progress=False)
+    with Store(spec) as store:
+        drifts = [r["energy_drift"] for r in store.rows()]
+    assert min(drifts) > 1e-6, drifts
 
 
 # --- the senses of orbit and spin ----------------------------------------------------------------

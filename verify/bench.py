@@ -97,7 +97,7 @@ def _timed(f, repeats: int):
 
 # --- work against precision ------------------------------------------------------------------
 
-class _Problem:
+class ReferenceProblem:
     """A reference case as an initial-value problem, with its certified values on the grid."""
 
     def __init__(self, name: str):
@@ -141,7 +141,7 @@ def _to_mpf(x):
     return mpmath.mpf(str(x))
 
 
-def heyoka_attempt(problem: _Problem, precision: str, tol=None, repeats: int = 1, index: int = -1) -> Attempt:
+def heyoka_attempt(problem: ReferenceProblem, precision: str, tol=None, repeats: int = 1, index: int = -1) -> Attempt:
     """Bare heyoka (compiled system, no events) from the case's start to grid[index]."""
     prec, pars, y0 = problem.start(precision)
     compiled = compile_model(problem.model, prec)
@@ -167,7 +167,7 @@ def heyoka_attempt(problem: _Problem, precision: str, tol=None, repeats: int = 1
                    steps, problem.t(index))
 
 
-def _compiled_rhs(problem: _Problem):
+def _compiled_rhs(problem: ReferenceProblem):
     """f(t, y) and its Jacobian as numpy callables built from heyoka cfuncs (double)."""
     prec, pars, y0 = problem.start("double")
     compiled = compile_model(problem.model, prec)
@@ -191,7 +191,7 @@ def _compiled_rhs(problem: _Problem):
     return f, j, np.array(y0, dtype=float)
 
 
-def scipy_attempts(problem: _Problem, method: str, tolerances, use_jac: bool, repeats: int = 1) -> list:
+def scipy_attempts(problem: ReferenceProblem, method: str, tolerances, use_jac: bool, repeats: int = 1) -> list:
     from scipy.integrate import solve_ivp
 
     f, jac, y0 = _compiled_rhs(problem)
@@ -217,7 +217,7 @@ def scipy_attempts(problem: _Problem, method: str, tolerances, use_jac: bool, re
     return out
 
 
-def odefun_attempts(problem: _Problem, dps_values, index: int = ODEFUN_GRID_INDEX) -> list:
+def odefun_attempts(problem: ReferenceProblem, dps_values, index: int = ODEFUN_GRID_INDEX) -> list:
     """mpmath.odefun (Taylor series in Python) from the start to grid[index], at each dps."""
     model = problem.model
     syms = list(STATE) + [p.symbol for p in model.parameters]
@@ -246,7 +246,7 @@ def odefun_attempts(problem: _Problem, dps_values, index: int = ODEFUN_GRID_INDE
 
 def work_precision(quick: bool, progress) -> dict:
     repeats = _size("repeats", quick)
-    p = _Problem(WORK_CASE)
+    p = ReferenceProblem(WORK_CASE)
     attempts = []
     progress("  work-precision: heyoka")
     for tol in (1e-6, 1e-9, 1e-12, None):
@@ -264,7 +264,7 @@ def work_precision(quick: bool, progress) -> dict:
     longer = None
     if not quick:
         progress("  work-precision: 10 s ring, heyoka double against DOP853")
-        q = _Problem(LONG_CASE)
+        q = ReferenceProblem(LONG_CASE)
         longer = [heyoka_attempt(q, "double", tol, repeats) for tol in (1e-9, 1e-12, None)]
         longer += scipy_attempts(q, "DOP853", (1e-10, 1e-12, 1e-13), False, repeats)
         longer_floor = q.reference()[1]
@@ -370,27 +370,37 @@ def sweep_throughput(quick: bool, progress) -> dict:
     return out
 
 
+def _batch_integrator(system, pars, ys, bs: int, **kwargs):
+    """A batch integrator of ``bs`` lanes for ``system``, every lane with the parameters ``pars``."""
+    return hy.taylor_adaptive_batch(system, np.ascontiguousarray(ys[:, :bs]),
+                                    pars=np.ascontiguousarray(np.repeat(pars[:, None], bs, axis=1)), **kwargs)
+
+
+def _ensemble_of_batches(tb, ys, T: float) -> tuple:
+    """(seconds, final states) of every whole batch of the columns of ``ys`` to time T, batches on threads."""
+    bs = tb.batch_size
+    m = ys.shape[1] // bs
+
+    def gen(tc, b):
+        tc.set_time(0.0)
+        tc.state[:] = ys[:, b * bs:(b + 1) * bs]
+        return tc
+
+    seconds, res = _timed(lambda: hy.ensemble_propagate_until_batch(tb, T, m, gen), 1)
+    return seconds, np.hstack([r[0].state for r in res])
+
+
 def _throughput_by_tolerance(system, pars, ys, T: float, tolerances=(None, 1e-12, 1e-9, 1e-6)) -> list:
     """The best mode (batch lanes in an ensemble) at looser tolerances: what the issue's 3,000/s would
     cost in accuracy. Each row's error is the largest final-state difference to the run at eps."""
-    n, bs = ys.shape[1], hy.recommended_simd_size()
-    m = n // bs
+    bs = hy.recommended_simd_size()
     rows, at_eps = [], None
     for tol in tolerances:
-        kw = {} if tol is None else {"tol": tol}
-        tb = hy.taylor_adaptive_batch(system, np.ascontiguousarray(ys[:, :bs]),
-                                      pars=np.ascontiguousarray(np.repeat(pars[:, None], bs, axis=1)), **kw)
-
-        def gen(tc, b):
-            tc.set_time(0.0)
-            tc.state[:] = ys[:, b * bs:(b + 1) * bs]
-            return tc
-
-        seconds, res = _timed(lambda: hy.ensemble_propagate_until_batch(tb, T, m, gen), 1)
-        final = np.hstack([r[0].state for r in res])
+        tb = _batch_integrator(system, pars, ys, bs, **({} if tol is None else {"tol": tol}))
+        seconds, final = _ensemble_of_batches(tb, ys, T)
         at_eps = final if at_eps is None else at_eps
         rows.append({"tol": "eps" if tol is None else f"{tol:g}", "order": int(tb.order), "lanes": bs,
-                     "per_second": float(f"{m * bs / seconds:.4g}"),
+                     "per_second": float(f"{final.shape[1] / seconds:.4g}"),
                      "max_difference_to_eps": float(f"{np.max(np.abs(final - at_eps)):.2e}")})
     return rows
 
@@ -420,8 +430,7 @@ def _throughput(system, pars, ys, T: float, k_scipy: int) -> dict:
     finals["ensemble"] = np.array([r[0].state for r in ens]).T
     for bs in sorted({hy.recommended_simd_size(), 2 * hy.recommended_simd_size()}):
         m = n // bs
-        tb = hy.taylor_adaptive_batch(system, np.ascontiguousarray(ys[:, :bs]),
-                                      pars=np.ascontiguousarray(np.repeat(pars[:, None], bs, axis=1)))
+        tb = _batch_integrator(system, pars, ys, bs)
 
         def batch_loop():
             out = np.empty_like(ys[:, : m * bs])
@@ -433,14 +442,7 @@ def _throughput(system, pars, ys, T: float, k_scipy: int) -> dict:
             return out
 
         results[f"batch{bs}"], finals[f"batch{bs}"] = _timed(batch_loop, 1)
-
-        def gen_batch(tc, b):
-            tc.set_time(0.0)
-            tc.state[:] = ys[:, b * bs:(b + 1) * bs]
-            return tc
-
-        results[f"ensemble_batch{bs}"], eb = _timed(lambda: hy.ensemble_propagate_until_batch(tb, T, m, gen_batch), 1)
-        finals[f"ensemble_batch{bs}"] = np.hstack([r[0].state for r in eb])
+        results[f"ensemble_batch{bs}"], finals[f"ensemble_batch{bs}"] = _ensemble_of_batches(tb, ys, T)
     for name, fin in finals.items():
         agree[name] = float(np.max(np.abs(fin - ref[:, : fin.shape[1]])))
     from scipy.integrate import solve_ivp
@@ -571,11 +573,13 @@ def run_benchmarks(quick: bool = False, progress=None) -> dict:
 
 def write_benchmarks(results: dict, out: Path) -> None:
     out = Path(out)
-    figures = {"bench-work-precision.png": render_work_precision(results), "bench-energy.png": render_energy(results)}
-    for name, data in figures.items():
-        write_atomic(out / "figures" / name, data)
-    write_atomic(out / "benchmarks.json", json.dumps(results, indent=2) + "\n")
-    write_atomic(out / "BENCHMARKS.md", render_markdown(results))
+    # everything is rendered before the first file is replaced: a rendering error leaves the old set whole
+    files = {Path("figures") / "bench-work-precision.png": render_work_precision(results),
+             Path("figures") / "bench-energy.png": render_energy(results),
+             Path("benchmarks.json"): json.dumps(results, indent=2) + "\n",
+             Path("BENCHMARKS.md"): render_markdown(results)}
+    for name, data in files.items():
+        write_atomic(out / name, data)
 
 
 # --- rendering ---------------------------------------------------------------------------------

@@ -215,11 +215,12 @@ def cmd_sweep(args) -> int:
             if not rows:
                 raise UsageError(f"the store {spec.store} holds no rows yet")
             out = Path(args.out) if args.out else Path(spec.store).with_suffix(".png")
+            _output_folder(str(out.parent))
             write_atomic(out, render(spec, rows))
             print(f"wrote {out} ({len(rows)} of {spec.n_points} trajectories)")
             return 0
         result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet)
-    except (sweep.SpecError, sweep.StoreError) as err:
+    except (sweep.SpecError, sweep.StoreError, sweep.ClusterError) as err:
         raise UsageError(str(err)) from None
     print(f"{spec.name}: {result.rows} of {spec.n_points} trajectories in {result.store} "
           f"({result.chunks_run} chunks run, {result.chunks_skipped} already there; {result.where}; "
@@ -227,10 +228,20 @@ def cmd_sweep(args) -> int:
     return 0
 
 
+def _output_folder(folder: str) -> str:
+    from .provenance import writable_folder
+
+    try:
+        writable_folder(folder)
+    except ValueError as err:
+        raise UsageError(f"--out: {err}") from None
+    return folder
+
+
 def cmd_report(args) -> int:
     from .report import write_report
 
-    write_report(args.out, bench=not args.no_bench)
+    write_report(_output_folder(args.out), bench=not args.no_bench)
     return 0
 
 
@@ -243,9 +254,10 @@ def cmd_bench(args) -> int:
         import scipy  # noqa: F401
     except ImportError:
         raise UsageError("the benchmark compares with scipy: pip install scipy (or the project's [bench] extra)") from None
+    out = _output_folder(args.out)
     t0 = time.monotonic()
-    write_benchmarks(run_benchmarks(quick=args.quick, progress=lambda s: print(s, file=sys.stderr, flush=True)), args.out)
-    print(f"wrote {args.out}/BENCHMARKS.md, benchmarks.json and figures/bench-*.png ({time.monotonic() - t0:.0f} s)")
+    write_benchmarks(run_benchmarks(quick=args.quick, progress=lambda s: print(s, file=sys.stderr, flush=True)), out)
+    print(f"wrote {out}/BENCHMARKS.md, benchmarks.json and figures/bench-*.png ({time.monotonic() - t0:.0f} s)")
     return 0
 
 

@@ -68,6 +68,23 @@ def provenance(precisions) -> dict:
             "precisions": [p.name for p in used]}
 
 
+def writable_folder(folder) -> Path:
+    """Create ``folder`` if needed and prove a file can be written there, before any long run.
+
+    Raises ``ValueError`` naming the folder when it cannot be made or written (so a command
+    fails in a second, not after the run it would have saved).
+    """
+    folder = Path(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".write-probe.", suffix=".tmp")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as err:
+        raise ValueError(f"cannot write to the folder {str(folder)!r}: {err.strerror or err}") from None
+    return folder
+
+
 def write_atomic(path: Path, data: bytes | str) -> None:
     """Write a file so that readers see either the old or the whole new content."""
     path = Path(path)

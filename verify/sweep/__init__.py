@@ -12,10 +12,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .runner import SweepResult, run_sweep
+from .runner import ClusterError, SweepResult, run_sweep
 from .spec import SpecError, SweepSpec, load, parse
 from .store import Store, StoreError
 
 SPECS = Path(__file__).resolve().parent / "specs"
 
-__all__ = ["SPECS", "SpecError", "Store", "StoreError", "SweepResult", "SweepSpec", "load", "parse", "run_sweep"]
+__all__ = ["ClusterError", "SPECS", "SpecError", "Store", "StoreError", "SweepResult", "SweepSpec", "load", "parse", "run_sweep"]

@@ -22,6 +22,10 @@ from .spec import SweepSpec, parse
 from .store import Store
 
 
+class ClusterError(ValueError):
+    """A Dask address that is malformed or does not answer; the message names it."""
+
+
 @dataclass(frozen=True)
 class SweepResult:
     """What a call to :func:`run_sweep` did."""
@@ -112,13 +116,16 @@ def _run_on_dask(spec: SweepSpec, todo: list, address: str, store: Store, bar: P
         cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                dashboard_address=None)
         client = Client(cluster)
-        per_task_threads = 1
     else:
-        client = Client(address, timeout="30s")
-        per_task_threads = 1
+        try:
+            client = Client(address, timeout="30s")
+        except (OSError, ValueError, TimeoutError) as err:
+            raise ClusterError(f"--dask {address!r}: no Dask scheduler there ({err}); allowed: 'local' or a "
+                               "scheduler's address such as tcp://host:8786") from None
     try:
         where = client.scheduler.address if cluster is None else f"local Dask cluster ({len(cluster.workers)} workers)"
-        futures = [client.submit(chunk_task, spec.text, c, per_task_threads, pure=False) for c in todo]
+        # one thread a task: Dask runs a task on every worker thread, so the cores are already busy
+        futures = [client.submit(chunk_task, spec.text, c, 1, pure=False) for c in todo]
         for fut in as_completed(futures):
             chunk, rows, seconds, worker = fut.result()
             store.write_chunk(chunk, rows, seconds, worker)

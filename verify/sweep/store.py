@@ -43,12 +43,22 @@ class Store:
     def __init__(self, spec: SweepSpec, path=None):
         self.spec = spec
         self.path = Path(path if path is not None else spec.store)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        self.db = sqlite3.connect(self.path, timeout=60)
-        self.db.execute("PRAGMA journal_mode=WAL")
-        self.db.execute("PRAGMA synchronous=FULL")
         self.cols = columns(spec)
-        self._init()
+        self.db = None
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self.db = sqlite3.connect(self.path, timeout=60)
+            self.db.execute("PRAGMA journal_mode=WAL")
+            self.db.execute("PRAGMA synchronous=FULL")
+            self._init()
+        except (OSError, sqlite3.Error) as err:
+            if self.db is not None:
+                self.db.close()
+            raise StoreError(f"cannot open the sweep store {str(self.path)!r}: {err} "
+                             "(give a writable path with --store, or [sweep] store in the spec)") from None
+        except StoreError:
+            self.db.close()
+            raise
 
     def _init(self) -> None:
         tables = {r[0] for r in self.db.execute("SELECT name FROM sqlite_master WHERE type = 'table'")}
