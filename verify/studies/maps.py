@@ -14,7 +14,7 @@ right-hand side of these four), so the map integrates the reduced 4-dimensional 
 How it runs
 -----------
 * The reduced system is compiled once per model in double as a ``taylor_adaptive_batch``
-  (batch size twice ``hy.recommended_simd_size()``: two SIMD registers a lane group; measured on
+  (batch size twice :func:`verify.lanes.simd_width`: two SIMD registers a lane group; measured on
   a 2-core AVX2 machine, 10^4 disk runs take 7.2 s with 8 lanes and 9.0 s with 4, bit for bit the
   same results), parameters as runtime ``par[i]``: the model's
   parameters in model order, then five per-lane bookkeeping parameters (alive, reason,
@@ -66,6 +66,7 @@ from models import get_model
 from models.symbols import phidot, psidot, theta, thetadot
 
 from . import thresholds
+from ..lanes import simd_width
 
 MOTIONS = thresholds.MOTIONS
 GROWTH = thresholds.GROWTH
@@ -460,7 +461,7 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
         8-dimensional system bite through x and y; the reduced system has no such component,
         and every run here starts perturbed (tilt > 0).
     batch_size : int, optional
-        Lanes per batch (default ``2 * hy.recommended_simd_size()``, see the module docstring).
+        Lanes per batch (default ``2 * verify.lanes.simd_width()``, see the module docstring).
 
     Returns
     -------
@@ -486,7 +487,7 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
     if rates is not None:
         rates = _positive_vector("rates", rates)
     threads = (os.cpu_count() or 1) if threads is None else int(_positive("threads", threads))
-    batch_size = 2 * hy.recommended_simd_size() if batch_size is None else int(_positive("batch_size", batch_size))
+    batch_size = 2 * simd_width() if batch_size is None else int(_positive("batch_size", batch_size))
     runs = None if rates is None else prepare_runs(model, motion, rates, tilts, t_end, params, cap, step_cap,
                                                    batch_size)
     thr = thresholds.threshold(model, motion, params)

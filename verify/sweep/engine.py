@@ -37,6 +37,7 @@ from models.ring_dissipation import annulus_inertia
 from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
 
 from ..compile import to_heyoka
+from ..lanes import simd_width
 from .spec import SweepSpec
 
 EXTRA = ("alive", "reason", "t_stop", "theta_stop")
@@ -184,7 +185,7 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     indices = list(spec.chunk_points(chunk))
     if not indices:
         raise ValueError(f"chunk {chunk} is outside the sweep's {spec.n_chunks} chunks")
-    bs = batch_size or hy.recommended_simd_size()
+    bs = batch_size or simd_width()
     cooldown = 2.0 * spec.t_end + 1.0
     sysm = system(spec.model, bs, cooldown)
     states, model_pars, refs = lane_inputs(spec, indices)
