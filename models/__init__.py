@@ -3,6 +3,9 @@
 >>> from models import get_model
 >>> disk = get_model("disk")                 # derived equations
 >>> printed = get_model("disk", "paper")     # the paper's Eq. 18 as printed
+>>> from models.ring import parameter_set
+>>> parameter_set("printed")                 # the paper's ring as printed (defaults: "annular")
+{'I1': '0.4993', 'I3': '0.8727', 'h': '0.4344'}
 
 See :mod:`models.symbols` for the conventions (3-1-3 Euler angles, paper Fig. 1).
 """

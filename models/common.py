@@ -11,12 +11,15 @@ GRAVITY = Parameter(
 )
 
 
-def inertia_parameters(I1_default, I3_default, what: str):
+def inertia_parameters(I1_default, I3_default, what: str, notes=("", "")):
+    """The parameters I1, I3 (positive) with their defaults; ``notes`` (I1's, I3's) are appended to
+    the descriptions in parentheses, e.g. where a default comes from."""
     I1 = sp.Symbol("I1", positive=True)
     I3 = sp.Symbol("I3", positive=True)
+    n1, n3 = (f" ({n})" if n else "" for n in notes)
     return (
-        Parameter("I1", I1, I1_default, f"transverse moment of inertia about C in units of {what}", lower=0.0),
-        Parameter("I3", I3, I3_default, f"axial moment of inertia about C in units of {what}", lower=0.0),
+        Parameter("I1", I1, I1_default, f"transverse moment of inertia about C in units of {what}{n1}", lower=0.0),
+        Parameter("I3", I3, I3_default, f"axial moment of inertia about C in units of {what}{n3}", lower=0.0),
     )
 
 

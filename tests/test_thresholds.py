@@ -257,3 +257,38 @@ def test_variational_equations_give_the_linear_w2(name, motion, precision, bound
     for factor in ("0.9", "1.1"):
         v = variational_w2(name, motion, lin * mpmath.mpf(factor), precision=precision)
         assert v.relative_difference < bound, (factor, v.relative_difference)
+
+
+# --- the ring's parameter sets (models.ring.PRINTED, ANNULAR) --------------------------------
+
+def _ring_straight_closed_form(p):
+    """psidot0^2 = g sqrt(1+h^2)(I1 I3 + I1 + I3 h^2)/(I3 (I3^2 + I3 h^2 + 2 I3 + h^2 + 1)) (README), in mpmath."""
+    I1, I3, h, g = (mpmath.mpf(sp.N(sp.nsimplify(p[k]) if isinstance(p[k], str) else p[k], 40)) for k in ("I1", "I3", "h", "g"))
+    return mpmath.sqrt(g * mpmath.sqrt(1 + h**2) * (I1 * I3 + I1 + I3 * h**2) / (I3 * (I3**2 + I3 * h**2 + 2 * I3 + h**2 + 1)))
+
+
+@pytest.mark.parametrize("set_name,expected", [("printed", "18.675597019778"), ("annular", "18.674971098245")])
+def test_ring_straight_line_threshold_follows_the_parameter_set(set_name, expected):
+    """Control that the set is used: the threshold for each set equals the closed form at that set's
+    values (evaluated independently in mpmath) and not at the other's."""
+    from models import ring
+
+    with mpmath.workdps(30):
+        mine = {**ring.parameter_set(set_name), "g": 980}
+        other = {**ring.parameter_set("annular" if set_name == "printed" else "printed"), "g": 980}
+        t = threshold("ring", "straight-line", ring.parameter_set(set_name))
+        assert abs(t.value - _ring_straight_closed_form(mine)) < mpmath.mpf(10) ** -25
+        assert abs(t.value - _ring_straight_closed_form(other)) > mpmath.mpf("5e-4")
+        assert mpmath.nstr(t.value, 14) == expected
+        assert t.params["h"].startswith("0.4344" if set_name == "printed" else "0.43442622950819672131")
+
+
+def test_ring_thresholds_differ_between_the_sets_in_the_fourth_decimal():
+    from models import ring
+
+    with mpmath.workdps(30):
+        for motion, lo, hi in (("straight-line", "6.2e-4", "6.3e-4"), ("diameter-spin", "2.4e-4", "2.5e-4")):
+            printed = threshold("ring", motion, ring.PRINTED).value
+            annular = threshold("ring", motion, ring.parameter_set("annular")).value
+            assert annular == threshold("ring", motion).value  # the defaults are the annular set
+            assert mpmath.mpf(lo) < abs(printed - annular) < mpmath.mpf(hi), (motion, printed - annular)

@@ -624,6 +624,10 @@ def render_map(smap: StabilityMap) -> bytes:
     ax.set_xlabel(f"spin rate {rate_name} (rad/s)")
     ax.set_ylabel("log10(initial tilt / rad)")
     shown = ", ".join(f"{k} = {float(v):g}" for k, v in smap.params.items())
+    if smap.model.startswith("ring"):  # name the ring's parameter set (models.ring: annular defaults or printed)
+        from models.ring import parameter_set_name
+
+        shown = f"{parameter_set_name(smap.params) or 'other'} set: {shown}"
     ax.set_title(f"{smap.model}, {smap.motion} ({shown}): growth of a theta perturbation in {smap.t_end:g} s",
                  fontsize=9)
     fig.tight_layout()

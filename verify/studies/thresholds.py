@@ -243,6 +243,36 @@ def _sleeping(name, model, subs, shown, dps) -> Threshold:
                      sp.sstr(disc))
 
 
+def ring_theta0_limits(params: Optional[dict] = None, dps: int = 30) -> dict:
+    """The ends of the ring's diameter-spin branch theta0(phidot0) (Eq. 62) for ``params``.
+
+    Parameters
+    ----------
+    params : dict, optional
+        Ring parameters (decimal strings or exact numbers; unset: the defaults, the annular set
+        of :mod:`models.ring`).
+    dps : int
+        Working digits.
+
+    Returns
+    -------
+    dict
+        ``"slow"``: cot^-1 h (phidot0 -> 0: the centre of mass above the contact);
+        ``"fast"``: the root of the phidot0^2 term of Eq. 62, sin(2 theta) (1 + I3 - I1 - h^2)/2 +
+        h cos(2 theta) = 0, i.e. 2 theta0 = atan2(2h, -(1 + I3 - I1 - h^2));
+        ``"fast_as_printed"``: the same with the paper's + h^2 (text after Eq. 62, an erratum).
+        mpmath numbers at ``dps`` digits.
+    """
+    model = get_model("ring")
+    subs = _params(model, dict(params or {}))
+    with mpmath.workdps(dps):
+        pv = {p.name: mpmath.mpf(sp.N(subs[p.symbol], dps + 10)) for p in model.parameters}
+        h, I1, I3 = pv["h"], pv["I1"], pv["I3"]
+        return {"slow": mpmath.acot(h),
+                "fast": mpmath.atan2(2 * h, -(1 + I3 - I1 - h**2)) / 2,
+                "fast_as_printed": mpmath.atan2(2 * h, -(1 + I3 - I1 + h**2)) / 2}
+
+
 # --- confirmation by the full nonlinear equations ----------------------------------------
 
 GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
