@@ -5,7 +5,7 @@ import re
 from functools import lru_cache
 
 from . import disk, gyroscope, hurricane, ring, simulations
-from .base import CONFIRMED, ERRATUM, NOT_CHECKABLE, Claim, Evaluation
+from .base import CONFIRMED, ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES, VERDICTS, Claim, Evaluation
 
 SECTIONS = (disk, simulations, ring, hurricane, gyroscope)
 N_EQUATIONS, N_FIGURES = 100, 20
@@ -43,4 +43,4 @@ def missing() -> tuple:
     return (sorted(set(range(1, N_EQUATIONS + 1)) - eqs), sorted(set(range(1, N_FIGURES + 1)) - figs))
 
 
-__all__ = ["CONFIRMED", "ERRATUM", "NOT_CHECKABLE", "Claim", "Evaluation", "all_claims", "covered", "missing"]
+__all__ = ["CONFIRMED", "ERRATUM", "NOT_CHECKABLE", "QUALIFIED", "SEVERITIES", "VERDICTS", "Claim", "Evaluation", "all_claims", "covered", "missing"]

@@ -1,19 +1,65 @@
 """Claims are data: a frozen record per checkable statement of the paper.
 
 In the manner of scipy.special's test registry: each :class:`Claim` names its source in
-the paper, the statement as printed, the check that decides it, the tolerance with its
-reason, and, where the paper is wrong, a known-failure note.  One parametrised test runs
-every claim (tests/test_claims.py) and the report renders the same evaluations, so the
-two cannot disagree.  The check computes the expected value by an independent route and
-compares it with what the paper prints; the verdict comes out of that comparison.
+the paper, quotes the paper's own words (``quote``, verbatim up to whitespace: a test finds
+every quote in :data:`PAPER`), says how the check reads them where a reading is needed
+(``reading``: units, a scaled form, an unstated start -- never a repair of what the quote
+gets wrong), names the check that decides it and the tolerance with its reason, and, where
+the paper is wrong, the expected erratum and its severity.  One parametrised test runs every
+claim (tests/test_claims.py) and the report renders the same evaluations, so the two cannot
+disagree.  The check computes the expected value by an independent route and compares it
+with what the paper prints; the verdict comes out of that comparison.
+
+Verdicts
+--------
+``confirmed``
+    the independent route agrees with the quote.
+``erratum``
+    it does not; the evaluation carries the correction, the claim a severity:
+    ``result`` (a number or conclusion is wrong), ``typo`` (the printed form is wrong but
+    what the paper derives from it is right), ``rounding`` (a last printed digit).
+``qualified``
+    a caption's described behaviour is reproduced, but only because of an unstated or finite
+    perturbation, while the threshold the caption implies is wrong; the evaluation states the
+    exact threshold and the perturbation that produces the figure.
+``not-checkable``
+    nothing to decide (a definition, a diagram), or -- for a simulation -- the two
+    independent measures of a qualitative statement disagree; both numbers are given.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Callable, Optional
+from pathlib import Path
+from typing import Callable, Optional, Union
 
-CONFIRMED, ERRATUM, NOT_CHECKABLE = "confirmed", "erratum", "not-checkable"
+CONFIRMED, ERRATUM, QUALIFIED, NOT_CHECKABLE = "confirmed", "erratum", "qualified", "not-checkable"
+VERDICTS = (CONFIRMED, ERRATUM, QUALIFIED, NOT_CHECKABLE)
+RESULT, TYPO, ROUNDING = "result", "typo", "rounding"
+SEVERITIES = (RESULT, TYPO, ROUNDING)  # most serious first: the report orders errata this way
+
+PAPER_FILE = Path(__file__).with_name("paper.md")  # a copy of ../shared/paper.md (tests check they agree)
+
+
+def _squash(text: str) -> str:
+    return " ".join(text.split())
+
+
+@lru_cache(maxsize=None)
+def paper_text() -> str:
+    """The paper with every run of whitespace collapsed to one space (quotes are matched in this)."""
+    return _squash(PAPER_FILE.read_text(encoding="utf-8"))
+
+
+def quote_fragments(quote) -> tuple:
+    """A claim's quote as a tuple of verbatim fragments (one string, or several joined by the claim)."""
+    return (quote,) if isinstance(quote, str) else tuple(quote)
+
+
+def quote_found(quote) -> bool:
+    """True when every fragment of ``quote`` stands verbatim (up to whitespace) in the paper."""
+    text = paper_text()
+    return all(_squash(f) and _squash(f) in text for f in quote_fragments(quote))
 
 
 @dataclass(frozen=True)
@@ -44,7 +90,10 @@ class Evaluation:
     """The outcome of a check.
 
     ``expected`` is what the independent route gives, ``observed`` what the paper
-    prints; ``correction`` is the corrected form for an erratum.
+    prints; ``correction`` is the corrected form for an erratum; ``qualification`` states,
+    for a qualified verdict, the exact threshold and the perturbation that produces what the
+    caption describes; ``measures`` names each independent measure of a simulation verdict
+    with its value, so a reader sees both numbers whether they agree or not.
     """
 
     verdict: str
@@ -53,19 +102,53 @@ class Evaluation:
     detail: str = ""
     correction: Optional[str] = None
     figures: tuple = ()
+    qualification: Optional[str] = None
+    measures: tuple = ()  # ((name, value text), ...)
 
 
 @dataclass(frozen=True)
 class Claim:
+    """One checkable statement of the paper.
+
+    ``statement`` is the registry's one-line summary (for tables); ``quote`` is what the
+    paper prints (one verbatim fragment or a tuple of them) and is what the check decides;
+    ``reading`` says how the check reads the quote where that needs saying.  The expected
+    verdict is part of the record: ``known_failure`` (with ``severity``) for an erratum,
+    ``qualified`` for a qualified caption, ``undecided`` for a simulation whose two measures
+    disagree, ``reason_not_checkable`` for a definition.
+    """
+
     id: str
     source: str  # "Eq. 40", "Fig. 11 RHS", "text after Eq. 57"
     section: str  # part of the paper
-    statement: str  # as printed
+    statement: str  # the registry's summary
     check: Callable[[], Evaluation] = field(compare=False)
     method: str = "algebra"  # algebra | numbers | simulation | definition
     tolerance: str = "exact (sympy identity)"
     known_failure: Optional[str] = None  # the erratum this check is expected to find
     reason_not_checkable: Optional[str] = None
+    quote: Union[str, tuple] = ""
+    reading: Optional[str] = None
+    severity: Optional[str] = None  # for an erratum: result | typo | rounding
+    qualified: Optional[str] = None  # the qualification this check is expected to find
+    undecided: Optional[str] = None  # why the measures are expected to disagree
+
+    def __post_init__(self):
+        if self.known_failure is not None and self.severity not in SEVERITIES:
+            raise ValueError(f"claim {self.id}: an expected erratum needs a severity from {SEVERITIES}, "
+                             f"got {self.severity!r}")
+        if self.known_failure is None and self.severity is not None:
+            raise ValueError(f"claim {self.id}: a severity without an expected erratum")
+
+    @property
+    def expected_verdict(self) -> str:
+        if self.reason_not_checkable is not None or self.undecided is not None:
+            return NOT_CHECKABLE
+        if self.known_failure is not None:
+            return ERRATUM
+        if self.qualified is not None:
+            return QUALIFIED
+        return CONFIRMED
 
     def evaluate(self) -> Evaluation:
         return _evaluate(self)
@@ -78,19 +161,32 @@ def _evaluate(claim: Claim) -> Evaluation:
     return claim.check()
 
 
-def decide(agrees: bool, expected, observed, detail="", correction=None, figures=()) -> Evaluation:
+def decide(agrees: bool, expected, observed, detail="", correction=None, figures=(), measures=()) -> Evaluation:
     """Confirmed when the independent route agrees with the paper, erratum otherwise."""
     verdict = CONFIRMED if agrees else ERRATUM
-    return Evaluation(verdict, str(expected), str(observed), detail, None if agrees else correction, tuple(figures))
+    return Evaluation(verdict, str(expected), str(observed), detail, None if agrees else correction, tuple(figures),
+                      measures=tuple(measures))
 
 
-def definition(id, source, section, statement, reason) -> Claim:
+def qualify(expected, observed, detail, qualification: str, figures=(), measures=()) -> Evaluation:
+    """The caption's behaviour is reproduced only through an unstated or finite perturbation."""
+    return Evaluation(QUALIFIED, str(expected), str(observed), detail, None, tuple(figures), qualification,
+                      tuple(measures))
+
+
+def undecided(expected, observed, detail, figures=(), measures=()) -> Evaluation:
+    """Two independent measures of a qualitative statement disagree: no verdict, both numbers shown."""
+    return Evaluation(NOT_CHECKABLE, str(expected), str(observed), detail, None, tuple(figures), None,
+                      tuple(measures))
+
+
+def definition(id, source, section, statement, reason, quote="", reading=None) -> Claim:
     """A statement that fixes notation or sets up an approximation: nothing to decide."""
     return Claim(id, source, section, statement, check=lambda: None, method="definition",
-                 tolerance="-", reason_not_checkable=reason)
+                 tolerance="-", reason_not_checkable=reason, quote=quote, reading=reading)
 
 
-def rows_identity(id, source, section, statement, printed, derived, body: str) -> Claim:
+def rows_identity(id, source, section, statement, printed, derived, body: str, quote="", reading=None) -> Claim:
     """A printed vector equation (LHS - RHS, 1-2-3 components) against the derived rows of ``body``."""
     def check():
         from .vectors import same, show
@@ -100,4 +196,4 @@ def rows_identity(id, source, section, statement, printed, derived, body: str) -
         ok = same(p, d)
         return decide(ok, f"derived Newton-Euler rows of the {body} (models/rolling.py)", f"{source} as printed, LHS - RHS",
                       "identical, row by row" if ok else f"printed - derived = {show(sp.simplify(p - d).T)}")
-    return Claim(id, source, section, statement, check)
+    return Claim(id, source, section, statement, check, quote=quote, reading=reading)

@@ -1,8 +1,10 @@
-"""Claims of the thin disk and hoop part of the paper (Eqs. 1-46, Figs. 1-2, footnote 2).
+"""Claims of the thin disk and hoop part of the paper (Eqs. 1-46, Fig. 1, Fig. 6 numbers, footnote 2).
 
 Independent routes: the rows derived from the vectors (models/rolling.py, itself checked
-against Kane's method in the tests), rotation matrices for the angular velocities, direct
-integration for the moments of inertia, linearisation and eigenvalues by sympy.
+against Kane's method in the tests), with m and R kept wherever the paper keeps them;
+rotation matrices for the angular velocities; the contact force F = m (a_C + g Z) for the
+torques of the steady circle; direct integration for the moments of inertia; linearisation
+and eigenvalues by sympy.
 """
 from __future__ import annotations
 
@@ -12,9 +14,11 @@ import sympy as sp
 
 from models import sliding_disk
 from models.rolling import derive
-from models.symbols import g, phi, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot
+from models.symbols import (
+    g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot, time_derivative,
+)
 
-from .base import Claim, decide, definition, rows_identity
+from .base import ROUNDING, TYPO, Claim, decide, definition, rows_identity
 from .vectors import (
     E1, E2, E3, c, euler_angles_omega, omega_body, omega_body_dot, omega_frame, s, same, show,
     to_inertial, vertical_in_frame,
@@ -22,8 +26,13 @@ from .vectors import (
 
 SECTION = "Thin disk and hoop (Eqs. 1-46)"
 I1, I3, k = sp.symbols("I1 I3 k", positive=True)
-RP = -E2  # r_P = -R e2 with R = 1 (Eq. 7 onwards)
+m, R = sp.symbols("m R", positive=True)  # kept where the paper keeps them (Eqs. 7-11, 20-23, 33, 46)
+RPK = -R * E2  # r_P = -R e2 (text before Eq. 5), R kept; the scaled equations take R = 1
 GVEC = -g * vertical_in_frame()  # the vector g of Eq. 6 points down
+HORIZONTAL_AXLE = s * E3 - c * E2  # unit vector along the horizontal projection of e3; Z x it = e1
+
+SCALED = "I <- I/(m R^2) and g <- g/R, as the paper states before Eq. 12 (so m = R = 1)"
+OMEGA_DOT = "omega_dot_i are the time derivatives of the components of omega (Eq. 16)"
 
 
 def _rows():
@@ -31,33 +40,43 @@ def _rows():
     return derive(I1, I3, sp.Integer(-1), sp.Integer(0)).rows
 
 
+def _rows_kept():
+    """The same rows with R kept: I1, I3 per unit mass (units of length^2), g in length/time^2."""
+    return derive(I1, I3, -R, sp.Integer(0)).rows
+
+
 def _I():
     return sp.diag(I1, I1, I3)
 
 
-def _vector_identity(id, source, statement, printed_minus):
-    return rows_identity(id, source, SECTION, statement, printed_minus, _rows, "thin disk (general I1, I3)")
+def _vector_identity(id, source, statement, printed_minus, derived=None, quote="", reading=None):
+    body = "thin disk (general I1, I3)" + (", m and R kept" if derived is not None else ", R = 1")
+    return rows_identity(id, source, SECTION, statement, printed_minus, derived or _rows, body,
+                         quote=quote, reading=reading)
 
 
 # --- Eq. 4: inertia -------------------------------------------------------------------
 
 def _inertia_integrals():
-    r, a, R = sp.symbols("r a R", positive=True)
+    r, a, R_ = sp.symbols("r a R", positive=True)
     x, y = r * sp.cos(a), r * sp.sin(a)
-    disk = lambda f: sp.integrate(sp.integrate(f * r, (r, 0, R)), (a, 0, 2 * sp.pi)) / (sp.pi * R**2)
-    hoop = lambda f: sp.integrate(f.subs(r, R), (a, 0, 2 * sp.pi)) / (2 * sp.pi)
+    disk = lambda f: sp.integrate(sp.integrate(f * r, (r, 0, R_)), (a, 0, 2 * sp.pi)) / (sp.pi * R_**2)
+    hoop = lambda f: sp.integrate(f.subs(r, R_), (a, 0, 2 * sp.pi)) / (2 * sp.pi)
     out = {}
     for name, avg in (("disk", disk), ("hoop", hoop)):
-        out[name] = sp.Matrix([[avg(y**2), -avg(x * y), 0], [-avg(x * y), avg(x**2), 0], [0, 0, avg(x**2 + y**2)]]) / R**2
+        out[name] = sp.Matrix([[avg(y**2), -avg(x * y), 0], [-avg(x * y), avg(x**2), 0], [0, 0, avg(x**2 + y**2)]]) / R_**2
     return out
 
 
 def _check_eq4_bodies():
     got = _inertia_integrals()
     printed = {"disk": sp.Rational(1, 4) * sp.diag(1, 1, 2), "hoop": sp.Rational(1, 2) * sp.diag(1, 1, 2)}
-    ok = all(same(got[n], printed[n]) for n in got)
-    return decide(ok, {n: show(m) for n, m in got.items()}, {n: show(m) for n, m in printed.items()},
-                  "moments of a uniform disk and hoop by integration over the body, in units of m R^2")
+    printed_k = {"disk": sp.Rational(1, 4), "hoop": sp.Rational(1, 2)}
+    ok = all(same(got[n], printed[n]) and same(2 * got[n][0, 0], got[n][2, 2]) and same(got[n][0, 0], printed_k[n])
+             for n in got)
+    return decide(ok, {n: show(mat) for n, mat in got.items()}, {n: show(mat) for n, mat in printed.items()},
+                  "moments of a uniform disk and hoop by integration over the body, in units of m R^2; "
+                  "2 I1 = I3 for both and I1 = k m R^2 with k = 1/4 (disk), 1/2 (hoop)")
 
 
 def _check_eq4_general():
@@ -72,39 +91,39 @@ def _check_eq4_general():
 # --- Eqs. 7-12: the vector equations -------------------------------------------------------
 
 def _check_eq7():
-    w, wd, Om = omega_body(), omega_body_dot(), omega_frame()
-    v = -w.cross(RP)
-    v_inertial = to_inertial(v)
-    from models.symbols import frame_vectors, time_derivative
+    from models.symbols import frame_vectors
 
+    w, wd, Om = omega_body(), omega_body_dot(), omega_frame()
+    v = -w.cross(RPK)
     e1, e2, e3 = frame_vectors()
-    a_inertial = v_inertial.applyfunc(time_derivative)
+    a_inertial = to_inertial(v).applyfunc(time_derivative)
     a_123 = sp.Matrix([a_inertial.dot(e) for e in (e1, e2, e3)])
-    printed = -wd.cross(RP) + Om.cross(v)
+    printed = -wd.cross(RPK) + Om.cross(v)
     ok = same(a_123, printed)
-    return decide(ok, "d/dt of the inertial components of v_C, projected on e1, e2, e3",
+    return decide(ok, "d/dt of the inertial components of v_C = -w x r_P, projected on e1, e2, e3 (R kept)",
                   "-w' x r_P + Omega x v_C", "the inertial acceleration of C for a contact vector fixed in the 1-2-3 frame")
 
 
 def _eq8():
     w, wd, Om = omega_body(), omega_body_dot(), omega_frame()
-    v = -w.cross(RP)
-    return _I() * wd + Om.cross(_I() * w) - RP.cross(-wd.cross(RP) + Om.cross(v) - GVEC)
+    I = m * _I()  # the body's inertia; Eq. 9 renames I <- I/m
+    v = -w.cross(RPK)
+    return I * wd + Om.cross(I * w) - m * RPK.cross(-wd.cross(RPK) + Om.cross(v) - GVEC)
 
 
 def _eq9():
     w, wd, Om = omega_body(), omega_body_dot(), omega_frame()
-    return _I() * wd + Om.cross(_I() * w) - RP.cross(-wd.cross(RP) + Om.cross(RP.cross(w)) - GVEC)
+    return _I() * wd + Om.cross(_I() * w) - RPK.cross(-wd.cross(RPK) + Om.cross(RPK.cross(w)) - GVEC)
 
 
 def _eq10():
     w, wd, Om = omega_body(), omega_body_dot(), omega_frame()
-    return _I() * wd + RP.cross(wd.cross(RP)) - (-Om.cross(_I() * w) + RP.cross(Om.cross(RP.cross(w)) - GVEC))
+    return _I() * wd + RPK.cross(wd.cross(RPK)) - (-Om.cross(_I() * w) + RPK.cross(Om.cross(RPK.cross(w)) - GVEC))
 
 
 def _eq11():
     w, wd, Om = omega_body(), omega_body_dot(), omega_frame()
-    return _I() * wd + wd - wd[1] * E2 - (-Om.cross(_I() * w) + RP.cross(Om[1] * w - GVEC))
+    return _I() * wd + R**2 * wd - R**2 * wd[1] * E2 - (-Om.cross(_I() * w) + RPK.cross(R * Om[1] * w - GVEC))
 
 
 def _eq12():
@@ -130,16 +149,30 @@ def _check_fig1():
     frame, _, _ = euler_angles_omega()
     e1, e2, e3 = frame[:, 0], frame[:, 1], frame[:, 2]
     horizontal = same(e1[2], 0)
-    away = same(e2[2], s)  # C - P = -r_P = e2 points up from P while 0 < theta < pi
-    w = sp.Matrix([0, 0, psidot])
-    v = to_inertial(-w.cross(RP)).subs(theta, sp.pi / 2)
-    trailing = same(v, -psidot * e1.subs(theta, sp.pi / 2))
-    ok = horizontal and away and trailing
-    return decide(ok, "e1 horizontal; e2 = C - P up from P; rolling upright with psidot > 0 moves C along -e1",
-                  "1 parallel to the plane and trailing if psidot > 0; 2 away from P", "from the rotation matrices and v_C = -w x r_P")
+    # P is the lowest point of the rim C + R (cos(b) e1 + sin(b) e2): height R sin(b) sin(theta), least at b = -pi/2
+    b = sp.Symbol("b")
+    height = (sp.cos(b) * e1 + sp.sin(b) * e2)[2]
+    lowest = same(height.subs(b, -sp.pi / 2), -s) and same(sp.diff(height, b).subs(b, -sp.pi / 2), 0) \
+        and same(sp.diff(height, b, 2).subs(b, -sp.pi / 2), s)
+    # rolling with phidot = thetadot = 0 at any theta: v_C = -R psidot e1
+    w = omega_body().subs({phidot: 0, thetadot: 0})
+    v = -w.cross(RPK)
+    trailing = same(v, -R * psidot * E1)
+    ok = horizontal and lowest and trailing
+    return decide(ok, "e1 horizontal; P = C - R e2 is the lowest point of the rim (0 < theta < pi), so e2 points from P "
+                      f"to C; rolling with phidot = thetadot = 0 gives v_C = {show(v.T)} (along -e1 for psidot > 0)",
+                  "1 parallel to the plane and trailing if psidot > 0; 2 away from P",
+                  "from the rotation matrices and v_C = -w x r_P")
 
 
 # --- Eqs. 17-24 ---------------------------------------------------------------------------
+
+def _check_eq17():
+    from models import paper
+
+    ok = same(paper.eq17_rows(I1, I3), _rows())
+    return decide(ok, "derived rows (general I1, I3)", "Eq. 17 as printed", "row-by-row identity")
+
 
 def _check_eq18():
     from models import paper
@@ -149,53 +182,104 @@ def _check_eq18():
     return decide(ok, "derived rows with I1 = k, I3 = 2k", "Eq. 18 as printed", "row-by-row identity")
 
 
-def _check_eq17():
+def _eq18_sides():
+    """The printed lhs and rhs of Eq. 18 (the rows of models.paper are lhs - rhs)."""
     from models import paper
 
-    ok = same(paper.eq17_rows(I1, I3), _rows())
-    return decide(ok, "derived rows (general I1, I3)", "Eq. 17 as printed", "row-by-row identity")
+    wd = omega_body_dot()
+    lhs = sp.Matrix([(k + 1) * wd[0], k * wd[1], (2 * k + 1) * wd[2]])
+    return lhs, lhs - paper.eq18_rows(k)
 
 
 def _check_knife_edge():
-    from models import paper
-
-    rhs = paper.eq18_rows(k).subs({thetaddot: 0, phiddot: 0, psiddot: 0, thetadot: 0}).subs(theta, sp.pi / 2)
-    straight = rhs.subs(phidot, 0)
-    diameter = rhs.subs(psidot, 0)
-    ok = same(straight, sp.zeros(3, 1)) and same(diameter, sp.zeros(3, 1))
-    return decide(ok, f"Eq. 18 at theta = pi/2, thetadot = 0: phidot = 0 gives {show(straight.T)}, psidot = 0 gives "
-                      f"{show(diameter.T)}", "the rhs of Eq. 18 is zero", "with every second derivative zero")
+    lhs, rhs = _eq18_sides()
+    upright = {theta: sp.pi / 2, thetadot: 0}
+    constant_rates = {thetaddot: 0, phiddot: 0, psiddot: 0}
+    rhs0 = rhs.subs(upright)
+    straight, diameter = rhs0.subs(phidot, 0), rhs0.subs(psidot, 0)
+    still = lhs.subs(constant_rates).subs(upright)  # constant rates: the lhs vanishes too, so both are solutions
+    ok = same(straight, sp.zeros(3, 1)) and same(diameter, sp.zeros(3, 1)) and same(still, sp.zeros(3, 1))
+    return decide(ok, f"printed rhs of Eq. 18 at theta = pi/2, thetadot = 0: phidot = 0 gives {show(straight.T)}, "
+                      f"psidot = 0 gives {show(diameter.T)}; the lhs at constant rates is {show(still.T)}",
+                  "the rhs of Eq. 18 is zero", "both motions solve Eq. 18")
 
 
 def _check_eq19():
     w = omega_body().subs(thetadot, 0)
     L = _I() * w
     alpha = theta - sp.pi / 2
-    horizontal = s * E3 - c * E2  # horizontal unit vector in the e2-e3 plane
     printed = I3 * (psidot + phidot * c) * sp.cos(alpha) + I1 * phidot * s * sp.sin(alpha)
-    ok = same(L.dot(horizontal), printed) and same(L.dot(vertical_in_frame().cross(horizontal)), 0)
-    return decide(ok, "L . (sin(theta) e3 - cos(theta) e2) with thetadot = 0 (L has no e1 part)", show(printed),
-                  "the horizontal component of L = I.w when theta is constant")
+    ok = same(L.dot(HORIZONTAL_AXLE), printed) and same(L.dot(vertical_in_frame().cross(HORIZONTAL_AXLE)), 0)
+    return decide(ok, "L . (sin(theta) e3 - cos(theta) e2) with thetadot = 0 (L has no other horizontal part)", show(printed),
+                  "the horizontal component of L = I.w when theta is constant, along the horizontal projection of the axle")
+
+
+def _steady_disk():
+    """Steady circle (theta, rates constant), m and R kept: contact force, torque about C and dL/dt."""
+    w, Om = omega_body().subs(thetadot, 0), omega_frame().subs(thetadot, 0)
+    v = -w.cross(RPK)
+    a = Om.cross(v)  # the 1-2-3 components of v_C are constant
+    force = m * (a + g * vertical_in_frame())
+    L = m * _I() * w  # I1, I3 per unit mass: L = (body inertia) . w
+    return v, a, force, RPK.cross(force), Om.cross(L), L.dot(HORIZONTAL_AXLE)
+
+
+def _check_eq20():
+    rho = sp.Symbol("rho", positive=True)
+    alpha = theta - sp.pi / 2
+    v, a, force, torque, dL, L_perp = _steady_disk()
+    on_circle = {psidot: rho * phidot / R}
+    printed = m * g * R * sp.sin(alpha) - m * (rho - R * sp.sin(alpha)) * phidot**2 * R * sp.cos(alpha)
+    out_of_page = same(dL, L_perp * phidot * E1)  # dL/dt = L_perp phidot e1: e1 is "out of the page"
+    torque_ok = same(torque.subs(on_circle), printed * E1)
+    normal = same(force.dot(vertical_in_frame()), m * g)
+    centripetal = same(a.dot(a).subs(on_circle), ((rho - R * sp.sin(alpha)) * phidot**2) ** 2) \
+        and same(a.dot(vertical_in_frame()), 0)
+    # the contact point moves with v_C + Omega x r_P = -(w - Omega) x r_P: speed R |psidot| = rho |phidot|
+    vP = -(omega_body() - omega_frame()).cross(RPK)
+    path = same(vP.dot(vP), R**2 * psidot**2)
+    ok = out_of_page and torque_ok and normal and centripetal and path
+    return decide(ok, f"r_P x m (a_C + g Z) with psidot = rho phidot / R: {show(sp.simplify(torque.subs(on_circle)).T)}; "
+                      "dL/dt = Omega x L = L_perp phidot e1",
+                  "Gamma = m g R sin(alpha) - m (rho - R sin(alpha)) phidot^2 R cos(alpha), out of the page",
+                  f"alpha = theta - pi/2; steps: dL/dt along e1 {out_of_page}, torque {torque_ok}, N = m g {normal}, "
+                  f"centripetal m (rho - R sin(alpha)) phidot^2 {centripetal}, path lengths R psidot = rho phidot {path}")
 
 
 def _check_eq21():
-    rho = sp.Symbol("rho")
-    alpha_s, alpha_c = -c, s
-    line1 = (-g * c - (rho + c) * phidot**2 * s) - (I3 * (psidot + phidot * c) * s - I1 * phidot * s * c) * phidot
+    rho = sp.Symbol("rho", positive=True)
+    steady = {thetaddot: 0, thetadot: 0}
+    row1_kept = _rows_kept()[0].subs(steady)  # per unit mass, R kept
+    row1 = _rows()[0].subs(steady)
+    # line 1: the body's moments m I1, m I3 (I1, I3 per unit mass), m and R kept
+    line1 = (-m * g * R * c - m * (rho + R * c) * phidot**2 * R * s) \
+        - (m * I3 * (psidot + phidot * c) * s - m * I1 * phidot * s * c) * phidot
     line2 = (-g * c - (psidot + phidot * c) * phidot * s) - (I3 * (psidot + phidot * c) - I1 * phidot * c) * phidot * s
     line3 = -g * c - (psidot * (1 + I3) + (1 + I3 - I1) * phidot * c) * phidot * s
-    steady_row1 = -_rows()[0].subs({thetaddot: 0, thetadot: 0})  # derived RHS of row 1 at theta = const
-    ok = same(line1.subs(rho, psidot / phidot), line2) and same(line2, line3) and same(line3, steady_row1)
-    del alpha_s, alpha_c
-    return decide(ok, "derived row 1 with thetadot = thetaddot = 0: " + show(sp.simplify(steady_row1)),
-                  "Eq. 21, three lines", "line 1 (rho = psidot/phidot, m = R = 1) = line 2 = line 3 = derived")
+    steps = (same(line1.subs(rho, R * psidot / phidot), -m * row1_kept), same(line2, -row1), same(line3, -row1))
+    return decide(all(steps), "derived row 1 at theta = const: " + show(sp.simplify(-row1)) + " = 0 (scaled), and "
+                  "m times the same row with R kept", "Eq. 21, three lines",
+                  "line 1 (m, R kept, psidot = rho phidot / R) = m x derived row; lines 2 and 3 = derived row "
+                  f"(scaled); steps {steps}; the row is component 1 of Eq. 17 with w1' = 0")
 
 
 def _check_eq22_24():
-    acc = derive(I1, I3, sp.Integer(-1), sp.Integer(0)).accelerations[0].subs({phidot: 0, psidot: 0})
-    ok = same(acc, -g * c / (I1 + 1))
-    return decide(ok, f"thetaddot = {show(acc)}", "(I1 + 1) w1' = -g cos(theta)",
-                  "derived thetaddot with phidot = psidot = 0; alpha = theta - pi/2 so sin(alpha) = -cos(theta)")
+    alpha = sp.Symbol("alpha")
+    tipping = {phidot: 0, psidot: 0}
+    acc = [e.subs(tipping) for e in derive(I1, I3, -R, sp.Integer(0)).accelerations]  # per unit mass, R kept
+    acc_scaled = derive(I1, I3, sp.Integer(-1), sp.Integer(0)).accelerations[0].subs(tipping)
+    stays = same(acc[1], 0) and same(acc[2], 0)  # phidot = psidot = 0 persists: a pure tip
+    # the body's moment is m I1; alpha = theta - pi/2, so alpha'' = theta'' = w1' (Eq. 16 with phidot = 0)
+    eq22 = sp.solve(sp.Eq((m * I1 + m * R**2) * sp.Symbol("a2"), m * g * R * sp.sin(alpha)), sp.Symbol("a2"))[0]
+    eq23 = -m * g * R * c / (m * I1 + m * R**2)
+    eq24 = -g * c / (I1 + 1)
+    steps = (same(eq22.subs(alpha, theta - sp.pi / 2), acc[0]), same(eq23, acc[0]), same(eq24, acc_scaled))
+    ok = stays and all(steps)
+    return decide(ok, f"derived thetaddot with phidot = psidot = 0 (m, R kept): {show(sp.simplify(acc[0]))}; "
+                      f"scaled: {show(acc_scaled)}",
+                  "(I1 + mR^2) alpha'' = mgR sin(alpha); (I1 + mR^2) w1' = -mgR cos(theta); (I1 + 1) w1' = -g cos(theta)",
+                  f"alpha = theta - pi/2 so sin(alpha) = -cos(theta); phiddot = psiddot = 0 there ({stays}); "
+                  f"Eqs. 22, 23, 24: {steps}")
 
 
 # --- Eqs. 30-33: straight-line rolling -----------------------------------------------------
@@ -204,7 +288,10 @@ eps, a, ad, add, p, pd, b, bd, q, qd = sp.symbols("epsilon alpha alphadot alphad
 psi0, phi0 = sp.symbols("psidot_0 phidot_0", real=True)
 
 
-def _linear_rows(subs):
+@lru_cache(maxsize=None)
+def _linearised(motion):
+    """First order in epsilon of the derived rows (I1 = k, I3 = 2k) about the knife-edge motion."""
+    subs = _straight_subs() if motion == "straight" else _diameter_subs()
     rows = derive(k, 2 * k, sp.Integer(-1), sp.Integer(0)).rows
     out = []
     for r in rows:
@@ -219,48 +306,56 @@ def _straight_subs():
 
 
 def _check_eq30():
-    lin = _linear_rows(_straight_subs())
+    lin = _linearised("straight")
     printed = sp.Matrix([(k + 1) * add - (-psi0 * (2 * k + 1) * p + g * a), k * pd - 2 * k * psi0 * ad, (2 * k + 1) * bd])
     return decide(same(lin, printed), show(lin.T), show(printed.T), "first order in the deviation of the derived rows")
 
 
 def _check_eq31():
-    row1 = (k + 1) * add - (-psi0 * (2 * k + 1) * p + g * a)
-    got = sp.solve(row1.subs(p, 2 * psi0 * a), add)[0] * (k + 1)
+    lin = _linearised("straight")
+    integrable = same(lin[1], k * (pd - 2 * psi0 * ad))  # d/dt (k (phidot - 2 psidot_0 alpha)) = 0
+    got = sp.solve(lin[0].subs(p, 2 * psi0 * a), add)[0] * (k + 1)
     printed = -(2 * (2 * k + 1) * psi0**2 - g) * a
-    return decide(same(got, printed), show(got), show(printed), "Eq. 30 row 1 with phidot = 2 psidot_0 alpha (row 2 integrated)")
+    return decide(integrable and same(got, printed), show(got), show(printed),
+                  "derived linear row 1 with phidot = 2 psidot_0 alpha (derived linear row 2 integrated, constant 0)")
 
 
-def _jacobian_threshold(motion):
-    """Eigenvalues of the derived reduced system (theta, thetadot, phidot, psidot) linearised."""
-    model_acc = derive(k, 2 * k, sp.Integer(-1), sp.Integer(0)).accelerations
+def _jacobian_threshold(motion, model_acc=None):
+    """Eigenvalues of the reduced system (theta, thetadot, phidot, psidot) linearised at theta = pi/2."""
+    if model_acc is None:
+        model_acc = derive(k, 2 * k, sp.Integer(-1), sp.Integer(0)).accelerations
     X = [theta, thetadot, phidot, psidot]
     F = [thetadot] + list(model_acc)
     eq = {theta: sp.pi / 2, thetadot: 0, phidot: 0, psidot: psi0} if motion == "straight" else \
          {theta: sp.pi / 2, thetadot: 0, phidot: phi0, psidot: 0}
     J = sp.Matrix([[sp.diff(f, x) for x in X] for f in F]).subs(eq)
     lam = sp.Symbol("lambda")
-    return sp.factor(sp.simplify((J - lam * sp.eye(4)).det())), lam
+    poly = sp.factor(sp.simplify((J - lam * sp.eye(4)).det()))
+    # lambda^2 (lambda^2 + w^2): oscillation iff w^2 > 0; the threshold is the rate at which w^2 = 0
+    w2 = sp.simplify(sp.cancel(poly / lam**2).subs(lam, 0))
+    rate = psi0 if motion == "straight" else phi0
+    P = sp.Symbol("P")
+    crit = sp.solve(w2.subs(rate**2, P), P)[0]
+    return poly, crit
 
 
 def _check_eq32():
-    poly, lam = _jacobian_threshold("straight")
-    # lambda^2 (lambda^2 + w^2): oscillation iff w^2 > 0
-    w2 = sp.simplify(sp.cancel(poly / lam**2).subs(lam, 0))
-    crit = sp.solve(sp.Eq(w2, 0), psi0**2) if w2.has(psi0) else []
-    crit = sp.solve(w2.subs(psi0**2, sp.Symbol("P")), sp.Symbol("P"))[0] if not crit else crit[0]
+    poly, crit = _jacobian_threshold("straight")
     printed = g / (2 * (2 * k + 1))
     return decide(same(crit, printed), f"characteristic polynomial {show(poly)}; threshold psidot_0^2 = {show(crit)}",
                   f"psidot_0^2 > {show(printed)}", "eigenvalues of the linearised derived equations (not Eq. 31)")
 
 
 def _check_eq33():
-    w = sp.Matrix([0, 0, psidot])
-    v = to_inertial(-w.cross(RP)).subs(theta, sp.pi / 2)
-    speed2 = sp.simplify(v.dot(v))
-    printed = psidot**2  # v^2 = R^2 psidot^2, R = 1
-    return decide(same(speed2, printed), f"|v_C|^2 = {show(speed2)} (units of R)", "v = R psidot_0",
-                  "so Eq. 32 reads v^2 > g R / (2 (2k + 1))")
+    _, crit = _jacobian_threshold("straight")
+    w = omega_body().subs({theta: sp.pi / 2, thetadot: 0, phidot: 0, psidot: psi0})
+    v = -w.cross(RPK)
+    speed2 = sp.simplify(v.dot(v))  # R^2 psidot_0^2
+    threshold = sp.simplify(speed2.subs(psi0**2, crit.subs(g, g / R)))  # the scaled g is g/R
+    printed = g * R / (2 * (2 * k + 1))
+    return decide(same(threshold, printed), f"|v_C|^2 = {show(speed2)}; at the threshold of Eq. 32 (g/R for g): "
+                  f"v^2 = {show(threshold)}", "v^2 > g R / (2 (2k + 1))",
+                  "eigenvalue threshold with dimensions restored, v from the rolling condition with R kept")
 
 
 # --- Eqs. 39-41: spinning about a diameter -----------------------------------------------
@@ -271,30 +366,27 @@ def _diameter_subs():
 
 
 def _check_eq39():
-    lin = _linear_rows(_diameter_subs())
+    lin = _linearised("diameter")
     printed = sp.Matrix([(k + 1) * add - (-(q * (2 * k + 1) - phi0 * (k + 1) * a) * phi0 + g * a),
                          k * bd, (2 * k + 1) * (qd - phi0 * ad) - ad * phi0])
     return decide(same(lin, printed), show(lin.T), show(printed.T), "first order in the deviation of the derived rows")
 
 
-def _eq40_from_39():
-    row1 = (k + 1) * add - (-(q * (2 * k + 1) - phi0 * (k + 1) * a) * phi0 + g * a)
-    q_of_a = 2 * (k + 1) * phi0 * a / (2 * k + 1)  # row 3 integrated with the constant 0, as in the paper
-    return sp.solve(row1.subs(q, q_of_a), add)[0] * (k + 1)
-
-
 def _check_eq40():
-    got = sp.factor(_eq40_from_39())
+    lin = _linearised("diameter")
+    # derived linear row 3 is d/dt ((2k + 1) psidot - 2 (k + 1) phidot_0 alpha) = 0: the paper's intermediate step
+    integrable = same(lin[2], (2 * k + 1) * qd - 2 * (k + 1) * phi0 * ad)
+    q_of_a = 2 * (k + 1) * phi0 * a / (2 * k + 1)  # integrated with the constant 0, as in the paper
+    got = sp.factor(sp.solve(lin[0].subs(q, q_of_a), add)[0] * (k + 1))
     printed = -((k + 1) * psi0**2 - g) * a
-    return decide(same(got, printed), show(got), show(printed),
-                  "Eq. 39 row 1 with (2k + 1) psidot = 2 (k + 1) phidot_0 alpha",
+    return decide(integrable and same(got, printed), show(got), show(printed),
+                  "derived linear row 1 with (2k + 1) psidot = 2 (k + 1) phidot_0 alpha (derived linear row 3 integrated; "
+                  f"that intermediate step holds: {integrable}); psidot_0 is not a quantity of this motion",
                   correction="(k + 1) alpha'' = -((k + 1) phidot_0^2 - g) alpha  (phidot_0, not psidot_0)")
 
 
 def _check_eq41():
-    poly, lam = _jacobian_threshold("diameter")
-    w2 = sp.simplify(sp.cancel(poly / lam**2).subs(lam, 0))
-    crit = sp.solve(w2.subs(phi0**2, sp.Symbol("P")), sp.Symbol("P"))[0]
+    poly, crit = _jacobian_threshold("diameter")
     printed = g / (k + 1)
     return decide(same(crit, printed), f"characteristic polynomial {show(poly)}; threshold phidot_0^2 = {show(crit)}",
                   f"phidot_0^2 > {show(printed)}", "eigenvalues of the linearised rolling equations")
@@ -302,19 +394,14 @@ def _check_eq41():
 
 def _check_footnote2():
     """Olsson's threshold is that of the disk on a frictionless plane (horizontal force zero)."""
-    acc = sliding_disk.model().accelerations
     kk = sliding_disk.k
-    X = [theta, thetadot, phidot, psidot]
-    F = [thetadot] + [e.subs(kk, k) for e in acc]
-    J = sp.Matrix([[sp.diff(f, x) for x in X] for f in F]).subs({theta: sp.pi / 2, thetadot: 0, phidot: phi0, psidot: 0})
-    lam = sp.Symbol("lambda")
-    poly = sp.factor(sp.simplify((J - lam * sp.eye(4)).det()))
-    w2 = sp.simplify(sp.cancel(poly / lam**2).subs(lam, 0))
-    crit = sp.solve(w2.subs(phi0**2, sp.Symbol("P")), sp.Symbol("P"))[0]
-    printed = g / k
+    acc = [e.subs(kk, k) for e in sliding_disk.model().accelerations]
+    poly, crit = _jacobian_threshold("diameter", acc)
+    printed = g / k  # g/(k R) with the scaled g <- g/R
     return decide(same(crit, printed), f"smooth plane: threshold phidot_0^2 = {show(crit)} (characteristic polynomial {show(poly)})",
                   "Olsson: phidot_0^2 > g/(k R) with zero horizontal contact force",
-                  "both thresholds are right, each for its own contact: rolling g/(k+1) (Eq. 41), frictionless g/k")
+                  "the zero horizontal force is a frictionless contact; its threshold g/(kR) differs from the rolling "
+                  "g/((k+1)R) of Eq. 41, so the assumption is what separates the two results")
 
 
 # --- Eqs. 42-46: spin-down and energy -------------------------------------------------
@@ -330,13 +417,13 @@ def _check_eq42():
 
 
 def _check_eq43_44():
-    row1 = -(psidot * (2 * k + 1) + phidot * (k + 1) * c) * phidot * s - g * c
+    row1 = -_rows()[0].subs({thetaddot: 0, thetadot: 0, I1: k, I3: 2 * k})
     got = row1.subs(psidot, -phidot * c)
     printed43 = -(-(2 * k + 1) + (k + 1)) * phidot**2 * c * s - g * c
     printed44 = k * phidot**2 * s - g
     ok = same(got, printed43) and same(got / c, printed44)
     return decide(ok, show(sp.factor(got)), f"Eq. 43: {show(printed43)}; Eq. 44: {show(printed44)}",
-                  "row 1 of Eq. 42 with psidot = -phidot cos(theta); Eq. 44 is Eq. 43 divided by cos(theta)")
+                  "derived row 1 at thetadot = 0 with psidot = -phidot cos(theta); Eq. 44 is Eq. 43 divided by cos(theta)")
 
 
 def _check_eq45():
@@ -356,21 +443,31 @@ def _check_vertical_spin():
 
 def _check_vcm_text():
     w = omega_body().subs(thetadot, 0)
-    v = -w.cross(RP)
-    printed = (psidot + phidot * c) * E1
+    v = -w.cross(RPK)
+    printed = R * (psidot + phidot * c) * E1
     return decide(same(v, printed), f"v_CM = {show(v.T)} in (e1, e2, e3)", "v_CM = R (psidot + phidot cos(theta)) e1",
-                  "v_C = -w x r_P with thetadot = 0", correction="v_CM = -R (psidot + phidot cos(theta)) e1")
+                  "v_C = -w x r_P with thetadot = 0; the magnitude, which the text's argument uses, is right",
+                  correction="v_CM = -R (psidot + phidot cos(theta)) e1")
 
 
 def _check_eq46():
-    w = omega_body()
-    v = -w.cross(RP)
-    lhs_ok = same(v.dot(v), w[0] ** 2 + w[2] ** 2)
     from models import paper
 
+    w, wd = omega_body(), omega_body_dot()
+    lhs17 = sp.Matrix([(I1 + 1) * wd[0], I1 * wd[1], (I3 + 1) * wd[2]])
+    bracket = w.dot(_I() * w) / 2 + (w[0] ** 2 + w[2] ** 2) / 2
+    dotted = same(w.dot(lhs17), time_derivative(bracket))
+    v = -w.cross(RPK)
+    kinetic = same(v.dot(v), R**2 * (w[0] ** 2 + w[2] ** 2))  # so 1/2 (w1^2 + w3^2) = (1/(m R^2)) 1/2 m v_CM^2
+    height = -RPK.dot(vertical_in_frame())
+    potential = same(height, R * s) and \
+        same((-time_derivative(m * g * height) / (m * R**2)).subs(g, g * R), -g * c * thetadot)  # g <- g/R
     power = sp.simplify(sp.expand_trig(w.dot(paper.eq17_rhs(I1, I3))))
-    ok = lhs_ok and same(power, -g * c * thetadot)
-    return decide(ok, f"|v_C|^2 = w1^2 + w3^2; w . RHS(17) = {show(power)}", "energy conserved (Mathematica confirms)",
+    ok = dotted and kinetic and potential and same(power, -g * c * thetadot)
+    return decide(ok, f"w . lhs(17) = d/dt[1/2 w.I.w + 1/2 (w1^2 + w3^2)]: {dotted}; |v_C|^2 = R^2 (w1^2 + w3^2): {kinetic}; "
+                      f"height of C = R sin(theta), -d/dt(m g R sin)/(m R^2) -> -g cos thetadot: {potential}; "
+                      f"w . rhs(17) = {show(power)}",
+                  "Eq. 46 and the energy balance it states ('Mathematica confirms')",
                   "the algebra the paper leaves to Mathematica, done with sympy")
 
 
@@ -416,66 +513,175 @@ def _fig6_check(family, printed):
 def claims() -> list:
     d = SECTION
     out = [
-        definition("eq-1", "Eq. 1", d, "x = R cos(theta)", "an example of a holonomic constraint (a definition)"),
-        definition("eq-2", "Eq. 2", d, "y = R sin(theta)", "an example of a holonomic constraint (a definition)"),
-        definition("eq-3", "Eq. 3", d, "z = 0", "an example of a holonomic constraint (a definition)"),
+        definition("eq-1", "Eq. 1", d, "x = R cos(theta)", "an example of a holonomic constraint (a definition)",
+                   quote=r"x = R \cos \theta"),
+        definition("eq-2", "Eq. 2", d, "y = R sin(theta)", "an example of a holonomic constraint (a definition)",
+                   quote=r"y = R \sin \theta"),
+        definition("eq-3", "Eq. 3", d, "z = 0", "an example of a holonomic constraint (a definition)",
+                   quote=r"$$z = 0 \quad (3)$$"),
         Claim("eq-4-bodies", "Eq. 4 (disk, hoop)", d, "I_disk = (1/4) m R^2 diag(1,1,2), I_hoop = (1/2) m R^2 diag(1,1,2)",
-              _check_eq4_bodies, "algebra"),
+              _check_eq4_bodies, "algebra",
+              quote=(r"Note that since $2I_1 = I_3$ for plane symmetric figures, different I can be parametrized by the "
+                     r"fraction in front of mR^2 : $k = \frac{1}{2}$ for a hoop; $k = \frac{1}{4}$ for a disk.",
+                     r"\mathbf{I}_{\text{disk}} = \frac{1}{4} mR^2 \begin{pmatrix} 1 & 0 & 0 \\ 0 & 1 & 0 \\ 0 & 0 & 2 \end{pmatrix}",
+                     r"\mathbf{I}_{\text{hoop}} = \frac{1}{2} mR^2 \begin{pmatrix} 1 & 0 & 0 \\ 0 & 1 & 0 \\ 0 & 0 & 2 \end{pmatrix}"),
+              reading="moments about the centre, axis 3 the axle (normal to the disk), 1 and 2 in its plane"),
         Claim("eq-4-general", "Eq. 4 (general)", d, "I = ((I1, 1, 0), (0, I1, 0), (0, 0, I3))", _check_eq4_general,
-              "algebra", known_failure="stray 1 off the diagonal"),
+              "algebra", known_failure="stray 1 off the diagonal", severity=TYPO,
+              quote=r"\mathbf{I} = \begin{pmatrix} I_1 & 1 & 0 \\ 0 & I_1 & 0 \\ 0 & 0 & I_3 \end{pmatrix}"),
         definition("eq-5", "Eq. 5", d, "dL/dt|_123 + Omega x L = r_P x F",
-                   "Euler's law in a rotating frame (a law, used by the derivation; its consequences are checked from Eq. 8 on)"),
+                   "Euler's law in a rotating frame (a law, used by the derivation; its consequences are checked from Eq. 8 on)",
+                   quote=r"\left. \frac{d\mathbf{L}}{dt} \right|_{123} + \boldsymbol{\Omega} \times \mathbf{L} = \mathbf{r}_P \times \mathbf{F}"),
         definition("eq-6", "Eq. 6", d, "m (dv_C/dt|_123 + Omega x v_C) = F + m g",
-                   "Newton's law in a rotating frame (a law; its consequences are checked from Eq. 7 on)"),
-        Claim("eq-7", "Eq. 7", d, "m(-w' x r_P + Omega x v_C) = F + m g", _check_eq7),
-        _vector_identity("eq-8", "Eq. 8", "I.w' + Omega x L = m r_P x (-w' x r_P + Omega x v_C - g)", _eq8),
-        _vector_identity("eq-9", "Eq. 9", "I.w' + Omega x (I.w) = r_P x (-w' x r_P + Omega x (r_P x w) - g)", _eq9),
-        _vector_identity("eq-10", "Eq. 10", "I.w' + r_P x (w' x r_P) = -Omega x (I.w) + r_P x (Omega x (r_P x w) - g)", _eq10),
-        _vector_identity("eq-11", "Eq. 11", "I.w' + R^2 w' - R^2 w2' e2 = -Omega x (I.w) + r_P x (R Omega2 w - g)", _eq11),
-        _vector_identity("eq-12", "Eq. 12", "I.w' + w' - w2' e2 = -Omega x (I.w) - e2 x Omega2 w - e1 cos(theta) g", _eq12),
+                   "Newton's law in a rotating frame (a law; its consequences are checked from Eq. 7 on)",
+                   quote=r"m\dot{\mathbf{v}}_C = m \left(\left. \frac{d\mathbf{v}_C}{dt} \right|_{123} + \mathbf{\Omega} \times \mathbf{v}_C \right) = \mathbf{F} + m\mathbf{g}"),
+        Claim("eq-7", "Eq. 7", d, "m(-w' x r_P + Omega x v_C) = F + m g", _check_eq7,
+              quote=(r"By the no-slip rolling condition: $\mathbf{v}_C = -\boldsymbol{\omega} \times \mathbf{r}_P$. Since "
+                     r"\mathbf{r}_P is a constant in 123, we have:",
+                     r"m(-\dot{\boldsymbol{\omega}} \times \mathbf{r}_P + \mathbf{\Omega} \times \mathbf{v}_C) = \mathbf{F} + m\mathbf{g}"),
+              reading="r_P = -R e2 (text before Eq. 5), R kept; the left side is m times the acceleration of C"),
+        _vector_identity("eq-8", "Eq. 8", "I.w' + Omega x L = m r_P x (-w' x r_P + Omega x v_C - g)", _eq8,
+                         lambda: m * _rows_kept(),
+                         quote=r"\mathbf{I} \cdot \dot{\boldsymbol{\omega}} + \mathbf{\Omega} \times \mathbf{L} = m\mathbf{r}_P \times (-\dot{\boldsymbol{\omega}} \times \mathbf{r}_P + \mathbf{\Omega} \times \mathbf{v}_C - \mathbf{g})",
+                         reading="I the body's inertia (m times the per-unit-mass diag(I1, I1, I3)), L = I.w, "
+                                 "v_C = -w x r_P, r_P = -R e2; m and R kept"),
+        _vector_identity("eq-9", "Eq. 9", "I.w' + Omega x (I.w) = r_P x (-w' x r_P + Omega x (r_P x w) - g)", _eq9,
+                         _rows_kept,
+                         quote=r"\mathbf{I} \cdot \dot{\boldsymbol{\omega}} + \mathbf{\Omega} \times (\mathbf{I} \cdot \boldsymbol{\omega}) = \mathbf{r}_P \times (-\dot{\boldsymbol{\omega}} \times \mathbf{r}_P + \mathbf{\Omega} \times (\mathbf{r}_P \times \boldsymbol{\omega}) - \mathbf{g})",
+                         reading="I <- I/m, as the paper states before Eq. 9; R kept"),
+        _vector_identity("eq-10", "Eq. 10", "I.w' + r_P x (w' x r_P) = -Omega x (I.w) + r_P x (Omega x (r_P x w) - g)",
+                         _eq10, _rows_kept,
+                         quote=r"\mathbf{I} \cdot \dot{\boldsymbol{\omega}} + \mathbf{r}_P \times (\dot{\boldsymbol{\omega}} \times \mathbf{r}_P) = -\mathbf{\Omega} \times (\mathbf{I} \cdot \boldsymbol{\omega}) + \mathbf{r}_P \times (\mathbf{\Omega} \times (\mathbf{r}_P \times \boldsymbol{\omega}) - \mathbf{g})",
+                         reading="I per unit mass (I <- I/m before Eq. 9); R kept"),
+        _vector_identity("eq-11", "Eq. 11", "I.w' + R^2 w' - R^2 w2' e2 = -Omega x (I.w) + r_P x (R Omega2 w - g)", _eq11,
+                         _rows_kept,
+                         quote=r"\mathbf{I} \cdot \dot{\boldsymbol{\omega}} + R^2\dot{\boldsymbol{\omega}} - R^2\dot{\omega}_2\mathbf{e}_2 = -\mathbf{\Omega} \times (\mathbf{I} \cdot \boldsymbol{\omega}) + \mathbf{r}_P \times (R\mathbf{\Omega}_2\boldsymbol{\omega} - \mathbf{g})",
+                         reading="I per unit mass (I <- I/m before Eq. 9); R kept"),
+        _vector_identity("eq-12", "Eq. 12", "I.w' + w' - w2' e2 = -Omega x (I.w) - e2 x Omega2 w - e1 cos(theta) g", _eq12,
+                         quote=r"\mathbf{I} \cdot \dot{\boldsymbol{\omega}} + \dot{\boldsymbol{\omega}} - \dot{\omega}_2\mathbf{e}_2 = -\mathbf{\Omega} \times (\mathbf{I} \cdot \boldsymbol{\omega}) - \mathbf{e}_2 \times \mathbf{\Omega}_2\boldsymbol{\omega} - \mathbf{e}_1 \cos\theta g",
+                         reading="I <- I/R^2 and g <- g/R, as the paper states before Eq. 12 (so R = 1)"),
         definition("eq-13", "Eq. 13", d, "Omega = (thetadot, 0, 0) + M_theta^-1 (0, 0, phidot)",
-                   "the construction whose result Eq. 14 states (checked there)"),
-        Claim("eq-14", "Eq. 14", d, "Omega = (thetadot, phidot sin(theta), phidot cos(theta))", _check_eq14),
+                   "the construction whose result Eq. 14 states (checked there)",
+                   quote=r"\mathbf{\Omega} = \begin{pmatrix} \dot{\theta} \\ 0 \\ 0 \end{pmatrix} + \mathcal{M}_\theta^{-1} \begin{pmatrix} 0 \\ 0 \\ \dot{\phi} \end{pmatrix}"),
+        Claim("eq-14", "Eq. 14", d, "Omega = (thetadot, phidot sin(theta), phidot cos(theta))", _check_eq14,
+              quote=r"= (\dot{\theta}, \dot{\phi} \sin\theta, \dot{\phi} \cos\theta) \quad (14)",
+              reading="components along e1, e2, e3 of the 3-1-3 (phi, theta, psi) frame of Fig. 1"),
         definition("eq-15", "Eq. 15", d, "omega = (0,0,psidot) + (thetadot,0,0) + M_theta^-1 (0,0,phidot)",
-                   "the construction whose result Eq. 16 states (checked there)"),
-        Claim("eq-16", "Eq. 16", d, "omega = (thetadot, phidot sin(theta), phidot cos(theta) + psidot)", _check_eq16),
+                   "the construction whose result Eq. 16 states (checked there)",
+                   quote=r"\boldsymbol{\omega} = \begin{pmatrix} 0 \\ 0 \\ \dot{\psi} \end{pmatrix} + \begin{pmatrix} \dot{\theta} \\ 0 \\ 0 \end{pmatrix} + \mathcal{M}_\theta^{-1} \begin{pmatrix} 0 \\ 0 \\ \dot{\phi} \end{pmatrix}"),
+        Claim("eq-16", "Eq. 16", d, "omega = (thetadot, phidot sin(theta), phidot cos(theta) + psidot)", _check_eq16,
+              quote=r"= (\dot{\theta}, \dot{\phi} \sin(\theta), \dot{\phi} \cos(\theta) + \dot{\psi}) \quad (16)",
+              reading="components along e1, e2, e3 of the 3-1-3 (phi, theta, psi) frame of Fig. 1"),
         Claim("fig-1", "Fig. 1", d, "Axis 3 is the axle; 1 is parallel to the plane and trailing if psidot > 0; 2 points away from P",
-              _check_fig1),
-        Claim("eq-17", "Eq. 17", d, "equations of motion of the thin disk, general I1, I3", _check_eq17),
-        Claim("eq-18", "Eq. 18", d, "equations of motion with I1 = k, I3 = 2k", _check_eq18),
+              _check_fig1,
+              quote=r"Axis 3 is in the direction of the disk’s axle; 1 is always parallel to the plane and in the trailing "
+                    r"direction if $\dot{\psi} > 0$; 2 points away from the contact point P .",
+              reading="'trailing': opposite to the velocity of C when the disk rolls with phidot = thetadot = 0"),
+        Claim("eq-17", "Eq. 17", d, "equations of motion of the thin disk, general I1, I3", _check_eq17,
+              quote=r"\begin{pmatrix} (I_1 + 1) \dot{\omega}_1 \\ I_1 \dot{\omega}_2 \\ (I_3 + 1) \dot{\omega}_3 \end{pmatrix} = \begin{pmatrix} -(\dot{\psi}(1 + I_3) + \dot{\phi}(1 + I_3 - I_1) \cos\theta) \dot{\phi} \sin\theta - g \cos\theta \\ \dot{\theta}(\dot{\psi}I_3 + \dot{\phi}(I_3 - I_1) \cos\theta) \\ \dot{\phi} \dot{\theta} \sin\theta \end{pmatrix}",
+              reading=f"{SCALED}; {OMEGA_DOT}"),
+        Claim("eq-18", "Eq. 18", d, "equations of motion with I1 = k, I3 = 2k", _check_eq18,
+              quote=r"\begin{pmatrix} (k + 1) \dot{\omega}_1 \\ k \dot{\omega}_2 \\ (2k + 1) \dot{\omega}_3 \end{pmatrix} = \begin{pmatrix} -(\dot{\psi}(2k + 1) + \dot{\phi}(k + 1) \cos\theta) \dot{\phi} \sin\theta - g \cos\theta \\ k \dot{\theta}(2\dot{\psi} + \dot{\phi} \cos\theta) \\ \dot{\phi} \dot{\theta} \sin\theta \end{pmatrix}",
+              reading=f"{SCALED}; {OMEGA_DOT}"),
         Claim("text-knife-edge", "text after Eq. 18", d, "on a knife edge (theta = pi/2), straight-line rolling and spinning "
-              "on a diameter make the rhs of Eq. 18 zero", _check_knife_edge),
-        Claim("eq-19", "Eq. 19", d, "L_perp = I3 (psidot + phidot cos) cos(alpha) + I1 phidot sin(theta) sin(alpha)", _check_eq19),
-        Claim("eq-20-21", "Eqs. 20-21", d, "torque balance of the steady circle, reducing to component 1 of Eq. 17",
-              _check_eq21),
-        Claim("eq-22-24", "Eqs. 22-24", d, "(I1 + 1) w1' = -g cos(theta) for the tipping disk", _check_eq22_24),
+              "on a diameter make the rhs of Eq. 18 zero", _check_knife_edge,
+              quote=r"$\theta = \pi/2$, and either straight-line rolling ($\dot{\psi} \neq 0, \dot{\phi} = 0$) or spinning on "
+                    r"a diameter ($\dot{\psi} = 0, \dot{\phi} \neq 0$)...yes the rhs of Eq. (18) is zero.",
+              reading="theta held at pi/2 (thetadot = 0), the rates constant"),
+        Claim("eq-19", "Eq. 19", d, "L_perp = I3 (psidot + phidot cos) cos(alpha) + I1 phidot sin(theta) sin(alpha)", _check_eq19,
+              quote=(r"L_{\perp} = I_3(\dot{\psi} + \dot{\phi} \cos \theta) \cos \alpha + I_1 \dot{\phi} \sin \theta \sin \alpha",
+                     r"Note that $\theta = \alpha + \pi/2$ so $\sin \alpha = -\cos \theta$ and $\cos \alpha = \sin \theta$"),
+              reading="theta constant (Fig. 2); L_perp is the component of L along the horizontal projection of the axle e3"),
+        Claim("eq-20", "Eq. 20", d, "Gamma = m g R sin(alpha) - m (rho - R sin(alpha)) phidot^2 R cos(alpha), out of the page",
+              _check_eq20,
+              quote=(r"the vertical component of the contact force: $N = mg$. The horizontal contact force must provide the "
+                     r"centripetal force to move the CM in a circle of radius $\rho - R \sin \alpha$.",
+                     r"$d\mathbf{L}/dt$ is then out of the page with magnitude $L_{\perp} \dot{\phi}$. The net torque (out of the page) is:",
+                     r"\Gamma = mgR \sin \alpha - m(\rho - R \sin \alpha) \dot{\phi}^2 R \cos \alpha",
+                     r"$\dot{\psi} = \rho \dot{\phi} / R$ which is required by the equality of the path lengths: $\rho \dot{\phi} = R \dot{\psi}$."),
+              reading="alpha = theta - pi/2 (text after Eq. 20); 'out of the page' is the direction e1 of dL/dt = Omega x L; "
+                      "the contact force is F = m (a_C + g Z) for the steady circle; m, R and the body's moments kept"),
+        Claim("eq-21", "Eq. 21", d, "the torque balance of the steady circle, reducing to component 1 of Eq. 17", _check_eq21,
+              quote=(r"\begin{aligned} -mgR \cos \theta - m(\rho + R \cos \theta) \dot{\phi}^2 R \sin \theta &= \left(I_3(\dot{\psi} + \dot{\phi} \cos \theta) \sin \theta - I_1 \dot{\phi} \sin \theta \cos \theta \right) \dot{\phi} \\ -g \cos \theta - (\dot{\psi} + \dot{\phi} \cos \theta) \dot{\phi} \sin \theta &= \left(I_3(\dot{\psi} + \dot{\phi} \cos \theta) - I_1 \dot{\phi} \cos \theta \right) \dot{\phi} \sin \theta \\ -g \cos \theta - (\dot{\psi}(1 + I_3) + (1 + I_3 - I_1) \dot{\phi} \cos \theta) \dot{\phi} \sin \theta &= 0 \end{aligned}",
+                     r"(In the second line we make the replacements $I \leftarrow I/mR^2$, $g \leftarrow g/R$, and "
+                     r"$\dot{\psi} = \rho \dot{\phi} / R$.)",
+                     "Compare to component 1 of Eq. (17)."),
+              reading="line 1 with the body's moments I1, I3, m and R kept, and psidot = rho phidot / R (text after Eq. 20); "
+                      "lines 2-3 scaled as the parenthesis says"),
+        Claim("eq-22-24", "Eqs. 22-24", d, "(I1 + mR^2) alpha'' = mgR sin(alpha), i.e. (I1 + 1) w1' = -g cos(theta)",
+              _check_eq22_24,
+              quote=(r"(I_1 + mR^2) \ddot{\alpha} = mgR \sin \alpha", r"(I_1 + mR^2) \dot{\omega}_1 = -mgR \cos \theta",
+                     r"(I_1 + 1) \dot{\omega}_1 = -g \cos \theta", "where in the last line we have scaled out mR^2 ."),
+              reading="phidot = psidot = 0 (a disk tipping over); alpha = theta - pi/2 as after Eq. 20; I1 the body's moment "
+                      "about the centre; m and R kept in Eqs. 22-23"),
         definition("eq-25-29", "Eqs. 25-29", d, "psidot = psidot_0 + beta, theta = pi/2 + alpha, sin = 1, cos = -alpha",
-                   "the perturbation ansatz and first-order approximations (definitions)"),
-        Claim("eq-30", "Eq. 30", d, "linearised straight-line rolling", _check_eq30),
-        Claim("eq-31", "Eq. 31", d, "(k+1) alpha'' = -(2(2k+1) psidot_0^2 - g) alpha", _check_eq31),
-        Claim("eq-32", "Eq. 32", d, "psidot_0^2 > g / (2 (2k + 1))", _check_eq32),
-        Claim("eq-33", "Eq. 33", d, "v^2 > g R / (2 (2k + 1))", _check_eq33),
+                   "the perturbation ansatz and first-order approximations (definitions)",
+                   quote=(r"\dot{\psi} = \dot{\psi}_0 + \beta", r"\theta = \pi/2 + \alpha", r"\phi = 0 + \phi",
+                          r"\sin \theta = \cos \alpha = 1", r"\cos \theta = -\sin \alpha = -\alpha")),
+        Claim("eq-30", "Eq. 30", d, "linearised straight-line rolling", _check_eq30,
+              quote=r"\begin{pmatrix} (k+1) \ddot{\alpha} \\ k \ddot{\phi} \\ (2k+1) \dot{\beta} \end{pmatrix} = \begin{pmatrix} -\dot{\psi}_0(2k+1)\dot{\phi} + g\alpha \\ 2k\dot{\psi}_0 \dot{\alpha} \\ 0 \end{pmatrix}",
+              reading="first order in alpha, beta, phidot (Eqs. 25-29), from Eq. 18"),
+        Claim("eq-31", "Eq. 31", d, "(k+1) alpha'' = -(2(2k+1) psidot_0^2 - g) alpha", _check_eq31,
+              quote=(r"From the second component we conclude $\dot{\phi} = 2\dot{\psi}_0\alpha$, which we substitute into the first component:",
+                     r"(k+1) \ddot{\alpha} = -\left(2(2k+1)\dot{\psi}_0^2 - g\right) \alpha"),
+              reading="the constant of integration of the second component is zero"),
+        Claim("eq-32", "Eq. 32", d, "psidot_0^2 > g / (2 (2k + 1))", _check_eq32,
+              quote=(r"for bounded oscillations of α we must have:", r"\dot{\psi}_0^2 > \frac{g}{2(2k+1)}")),
+        Claim("eq-33", "Eq. 33", d, "v^2 > g R / (2 (2k + 1))", _check_eq33,
+              quote=(r"v^2 > \frac{gR}{2(2k+1)}", "where in the last line we have returned to usually dimensioned quantities."),
+              reading="v the speed of the centre of mass"),
         definition("eq-34-38", "Eqs. 34-38", d, "psidot small, theta = pi/2 + alpha, phidot = phidot_0 + beta",
-                   "the perturbation ansatz and first-order approximations (definitions)"),
-        Claim("eq-39", "Eq. 39", d, "linearised spin about a vertical diameter", _check_eq39),
+                   "the perturbation ansatz and first-order approximations (definitions)",
+                   quote=(r"\dot{\psi} = \dot{\psi} \quad (34)", r"\theta = \pi/2 + \alpha \quad (35)", r"\dot{\phi} = \dot{\phi}_0 + \beta",
+                          r"\sin \theta = \cos \alpha = 1 \quad (37)", r"\cos \theta = -\sin \alpha = -\alpha \quad (38)")),
+        Claim("eq-39", "Eq. 39", d, "linearised spin about a vertical diameter", _check_eq39,
+              quote=r"\begin{pmatrix} (k+1)\ddot{\alpha} \\ k\dot{\beta} \\ (2k+1)(\ddot{\psi} - \dot{\phi}_0\dot{\alpha}) \end{pmatrix} = \begin{pmatrix} -(\dot{\psi}(2k+1) - \dot{\phi}_0(k+1)\alpha)\dot{\phi}_0 + g\alpha \\ 0 \\ \dot{\alpha}\dot{\phi}_0 \end{pmatrix}",
+              reading="first order in alpha, beta, psidot (Eqs. 34-38), from Eq. 18"),
         Claim("eq-40", "Eq. 40", d, "(k+1) alpha'' = -((k+1) psidot_0^2 - g) alpha", _check_eq40,
-              known_failure="psidot_0 printed where phidot_0 belongs"),
-        Claim("eq-41", "Eq. 41", d, "phidot_0^2 > g/(k+1)", _check_eq41),
+              known_failure="psidot_0 printed where phidot_0 belongs", severity=TYPO,
+              quote=r"(k+1)\ddot{\alpha} = -\left((k+1)\dot{\psi}_0^2 - g\right)\alpha"),
+        Claim("eq-41", "Eq. 41", d, "phidot_0^2 > g/(k+1)", _check_eq41,
+              quote=(r"from which we conclude for bounded oscillations of α we must have:", r"\dot{\phi}_0^2 > \frac{g}{(k+1)}")),
         Claim("footnote-2", "footnote 2", d, "Olsson: phidot_0^2 > g/(kR) assuming zero horizontal contact force",
-              _check_footnote2),
+              _check_footnote2,
+              quote=r"asserted that in this situation the horizontal component of \mathbf{F} was zero, and found "
+                    r"$\dot{\phi}_0^2 > \frac{g}{kR}$.",
+              reading="the check decides the threshold that follows from the stated assumption (a frictionless contact, "
+                      "F = N Z); g/(kR) in dimensioned units is g/k in the scaled ones"),
         Claim("text-vertical-spin", "text after Eq. 41", d, "the z component of the spin is phidot + psidot cos(theta)",
-              _check_vertical_spin),
+              _check_vertical_spin,
+              quote=r"In the inertial frame the z component of coin's spin is $\dot{\phi} + \dot{\psi} \cos \theta$."),
         Claim("text-vcm", "text after Eq. 41", d, "if thetadot = 0, v_CM = R (psidot + phidot cos(theta)) e1", _check_vcm_text,
-              known_failure="sign"),
-        Claim("eq-42", "Eq. 42", d, "the rows with thetadot = 0", _check_eq42),
-        Claim("eq-43-44", "Eqs. 43-44", d, "0 = k phidot^2 sin(theta) - g with psidot = -phidot cos(theta)", _check_eq43_44),
-        Claim("eq-45", "Eq. 45", d, "phidot = sqrt(g / (k sin(theta)))", _check_eq45),
-        Claim("eq-46", "Eq. 46", d, "energy conservation of Eq. 17 ('lots of algebra, but Mathematica confirms')", _check_eq46),
+              known_failure="sign", severity=TYPO,
+              quote=r"Interestingly if $\dot{\theta} = 0$, $\mathbf{v}_{CM} = R(\dot{\psi} + \dot{\phi} \cos \theta)\mathbf{e}_1$"),
+        Claim("eq-42", "Eq. 42", d, "the rows with thetadot = 0", _check_eq42,
+              quote=r"\begin{pmatrix} 0 \\ k\ddot{\phi} \sin \theta \\ (2k+1)\frac{d}{dt}(\dot{\psi} + \dot{\phi} \cos \theta) \end{pmatrix} = \begin{pmatrix} -(\dot{\psi}(2k+1) + \dot{\phi}(k+1)\cos \theta)\dot{\phi} \sin \theta - g \cos \theta \\ 0 \\ 0 \end{pmatrix}",
+              reading="thetadot = 0 held (thetaddot = 0)"),
+        Claim("eq-43-44", "Eqs. 43-44", d, "0 = k phidot^2 sin(theta) - g with psidot = -phidot cos(theta)", _check_eq43_44,
+              quote=(r"we take that constant to be zero.",
+                     r"0 = -(-(2k+1) + (k+1))\dot{\phi}^2 \cos \theta \sin \theta - g \cos \theta",
+                     r"0 = k\dot{\phi}^2 \sin \theta - g")),
+        Claim("eq-45", "Eq. 45", d, "phidot = sqrt(g / (k sin(theta)))", _check_eq45,
+              quote=r"\sqrt{\frac{g}{k \sin \theta}} = \dot{\phi}",
+              reading="on the family psidot + phidot cos(theta) = 0, thetadot = 0 of the text before Eq. 43"),
+        Claim("eq-46", "Eq. 46", d, "energy conservation of Eq. 17 ('lots of algebra, but Mathematica confirms')", _check_eq46,
+              quote=(r"Dotting $\boldsymbol{\omega}$ with the lhs of Eq. (17) yields",
+                     r"\frac{d}{dt} \left[\frac{1}{2} \boldsymbol{\omega} \cdot \mathbf{I} \cdot \boldsymbol{\omega} + \frac{1}{2} (\omega_1^2 + \omega_3^2) \right] = \frac{1}{mR^2} \frac{d}{dt} \left[(\text{rotation KE}) + \frac{1}{2} mv_{CM}^2 \right]",
+                     r"so energy conservation requires that $\boldsymbol{\omega}$ dotted with the rhs of Eq. (17) be "
+                     r"$-\frac{d}{dt}(mgR \sin \theta) \rightarrow -g \cos \theta \dot{\theta}$. Lots of algebra, but "
+                     r"*Mathematica* confirms."),
+              reading="I in the bracket is the scaled inertia of Eq. 17; the arrow is the scaling I <- I/(m R^2), g <- g/R"),
         Claim("fig-6-lhs-numbers", "Fig. 6 LHS (numbers)", d,
               "spin-down with no z rotation: phidot = -625.917, psidot = 625.948, theta = .01, v_CM/R = .06",
               _fig6_check("no-vertical-spin", ("-625.917", "625.948", "0.06")), "numbers", "half a unit of the last printed digit",
-              known_failure="phidot is -625.9165: the last printed digit is off by one"),
+              known_failure="phidot is -625.9165: the last printed digit is off by one", severity=ROUNDING,
+              quote=r"Spin-down state with no z rotation, but with $v_{CM} \neq 0$: $\dot{\phi} = -625.917$, "
+                    r"$\dot{\psi} = 625.948$, $\theta = .01$, $v_{CM}/R = .06$.",
+              reading="k = 1/4, g = 980 cm/s^2, R = 1 cm (text before Fig. 3); 'no z rotation' is phidot + psidot cos(theta) = 0; "
+                      "theta = .01 is the given angle, the rates are the steady state there"),
         Claim("fig-6-rhs-numbers", "Fig. 6 RHS (numbers)", d, "spin-down with v_CM = 0: phidot = -626.104, psidot = 626.073",
-              _fig6_check("cm-at-rest", ("-626.104", "626.073")), "numbers", "half a unit of the last printed digit"),
+              _fig6_check("cm-at-rest", ("-626.104", "626.073")), "numbers", "half a unit of the last printed digit",
+              quote=r"Spin-down state with $v_{CM} = 0$: $\dot{\phi} = -626.104$, $\dot{\psi} = 626.073$",
+              reading="k = 1/4, g = 980 cm/s^2, R = 1 cm, theta = .01 as in the LHS"),
     ]
     return out

@@ -1,0 +1,107 @@
+"""The one-screen summary a reader opens first: computed into data, rendered from data.
+
+:func:`build` reads the claim evaluations and the studies (thresholds, spin-down) and returns
+a plain dict -- the two open questions answered with their numbers, the errata ordered by
+severity, the qualified captions with their thresholds, the undecided ones -- which goes into
+results.json; :func:`render` turns that dict, and nothing else, into Markdown.
+"""
+from __future__ import annotations
+
+from .claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
+
+SEVERITY_WORDS = {"result": "a number or conclusion is wrong", "typo": "the printed form is wrong, what follows is right",
+                  "rounding": "a last printed digit"}
+
+
+def _threshold(rows, model, motion):
+    for r in rows:
+        if r["model"] == model and r["motion"] == motion and not r["params"]:
+            return r
+    raise KeyError((model, motion))
+
+
+def _spindown(rows, model, family):
+    return [r for r in rows if r["model"] == model and r["family"] == family]
+
+
+def build(results, studies: dict) -> dict:
+    """The summary as data.  ``results``: (Claim, Evaluation) pairs; ``studies``: the report's studies dict."""
+    verdict = {c.id: e.verdict for c, e in results}
+    rolling = _threshold(studies["thresholds"], "disk", "diameter-spin")
+    smooth = _threshold(studies["thresholds"], "sliding-disk", "diameter-spin")
+    sd = studies["spindown"]
+    eq45_exact = max(abs(float(r["relative_error"])) for r in _spindown(sd, "disk", "cm-at-rest"))
+    eq45_other = [(r["theta"], r["relative_error"]) for r in _spindown(sd, "disk", "zero-vertical-spin")]
+    eq61 = {fam: [(r["theta"], r["relative_error"]) for r in _spindown(sd, "ring", fam)]
+            for fam in ("zero-vertical-spin", "cm-at-rest")}
+    errata = []
+    for c, e in results:
+        if e.verdict == ERRATUM:
+            errata.append({"id": c.id, "source": c.source, "severity": c.severity, "quote": _first(c.quote),
+                           "correction": e.correction})
+    errata.sort(key=lambda x: SEVERITIES.index(x["severity"]))  # stable: paper order within a severity
+    qualified = [{"id": c.id, "source": c.source, "quote": _first(c.quote), "qualification": e.qualification}
+                 for c, e in results if e.verdict == QUALIFIED]
+    undecided = [{"id": c.id, "source": c.source, "quote": _first(c.quote),
+                  "measures": [f"{n}: {v}" for n, v in e.measures]}
+                 for c, e in results if e.verdict == NOT_CHECKABLE and c.undecided is not None]
+    return {
+        "olsson": {"rolling_rate": rolling["linear"], "rolling_form": rolling["closed_form"],
+                   "smooth_rate": smooth["linear"], "smooth_form": smooth["closed_form"],
+                   "eq41": verdict.get("eq-41"), "footnote2": verdict.get("footnote-2"),
+                   "fig5": [verdict.get("fig-5-lhs"), verdict.get("fig-5-rhs")]},
+        "divergence": {"eq45_cm_at_rest_max_rel_error": f"{eq45_exact:.1e}", "eq45_zero_vertical_spin": eq45_other,
+                       "eq61": eq61, "eq45": verdict.get("eq-45"), "eq61_verdict": verdict.get("eq-61")},
+        "errata": errata, "qualified": qualified, "undecided": undecided,
+    }
+
+
+def _first(quote) -> str:
+    return quote if isinstance(quote, str) else " ... ".join(quote)
+
+
+def render(s: dict) -> list:
+    """Markdown lines of the summary (no computation here)."""
+    o, d = s["olsson"], s["divergence"]
+    z45 = d["eq45_zero_vertical_spin"]
+    z61 = d["eq61"]["zero-vertical-spin"]
+    c61 = d["eq61"]["cm-at-rest"]
+    lines = [
+        "## Summary",
+        "",
+        f"**Olsson or Eq. 41?** Both, each for its own contact. Rolling without slipping (a real table) is linearly "
+        f"stable while {o['rolling_form']}: rate {o['rolling_rate']} s^-1 (Eq. 41, {o['eq41']}); a frictionless plane, "
+        f"which is Olsson's zero horizontal force, needs {o['smooth_form']}: rate {float(o['smooth_rate']):.4f} s^-1 "
+        f"(footnote 2, {o['footnote2']}). The paper's own Fig. 5 runs at 1.1 and 0.9 x Eq. 41 are stable and unstable "
+        f"as Eq. 41 says ({' / '.join(str(v) for v in o['fig5'])}).",
+        "",
+        f"**Does phidot diverge as theta -> 0 as Eqs. 45 and 61 say?** It diverges like theta^-1/2 on every exact "
+        f"steady spin-down. Eq. 45 is exact on the family with the centre of mass at rest (largest relative error "
+        f"{d['eq45_cm_at_rest_max_rel_error']}, round-off of 60-digit arithmetic) and the leading term on the family with "
+        f"no vertical spin (relative error {z45[0][1]} at theta = {z45[0][0]}, {z45[-1][1]} at {z45[-1][0]}: like "
+        f"3 theta^2). Eq. 61, the ring's version, is wrong ({d['eq61_verdict']}): its relative error tends to "
+        f"{z61[-1][1]} on the family with no vertical spin (theta = {z61[-1][0]}) and {c61[-1][1]} with the centre of "
+        "mass at rest; the factor (1 - h) is spurious.",
+        "",
+    ]
+    if s["errata"]:
+        lines += ["**Errata, most serious first** (severity: " +
+                  "; ".join(f"*{k}*: {v}" for k, v in SEVERITY_WORDS.items()) + "):", "",
+                  "| severity | where | the paper prints | correction |", "|---|---|---|---|"]
+        lines += [f"| {e['severity']} | [{e['source']}](#{e['id']}) | {_cell(e['quote'])} | {_cell(e['correction'])} |"
+                  for e in s["errata"]]
+        lines.append("")
+    if s["qualified"]:
+        lines += ["**Qualified captions** -- the described behaviour is reproduced only through a finite or unstated "
+                  "perturbation, while the threshold the caption implies is wrong:", ""]
+        lines += [f"- [{q['source']}](#{q['id']}): {q['qualification']}" for q in s["qualified"]]
+        lines.append("")
+    if s["undecided"]:
+        lines += ["**Undecided captions** -- two independent measures disagree, so no verdict is given:", ""]
+        lines += [f"- [{u['source']}](#{u['id']}): " + "; ".join(u["measures"]) for u in s["undecided"]]
+        lines.append("")
+    return lines
+
+
+def _cell(text) -> str:
+    return str(text).replace("|", "\\|").replace("\n", " ")
