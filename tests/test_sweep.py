@@ -259,7 +259,7 @@ def test_ring_dissipation_loses_energy_at_the_rate_it_says(law):
 def short_air_drag_sweep(tmp_path):
     """The shipped ring+air-drag spec cut to 8 runs of 3 s."""
     text = (SPECS / "ring-retrograde-air-drag.toml").read_text()
-    text = text.replace("t_end = 120", "t_end = 3").replace("samples = 12001", "samples = 301") \
+    text = text.replace("t_end = 120", "t_end = 3").replace("samples = 48001", "samples = 301") \
                .replace("count = 6", "count = 2")
     return parse(text, store=str(tmp_path / "ring.sqlite"))
 
@@ -295,9 +295,10 @@ def test_energy_drift_column_sees_unaccounted_work(tmp_path, monkeypatch):
     assert min(drifts) > 1e-6, drifts
 
 
-# --- the senses of orbit and spin ----------------------------------------------------------------
+# --- the senses of orbit and spin (more in tests/test_retrograde.py) -------------------------------
 
 def _run(phi_rate, spin):
+    """A run without nutation: the CM on a circle, moving along e1 = (cos phi, sin phi)."""
     t = np.linspace(0, 10, 2001)
     phi = np.cumsum(np.r_[0, np.diff(t) * phi_rate(t[1:])])
     y = np.zeros((len(t), 8))
@@ -308,15 +309,27 @@ def _run(phi_rate, spin):
 
 
 def test_senses_read_a_prograde_run():
-    t, y, wz = _run(lambda t: 5 + 0 * t, lambda t: 3 + 0 * t)
+    """No nutation: the path is its own slow path, read over 20 equal windows (0.8 turn each here)."""
+    t, y, wz = _run(lambda t: 10 + 0 * t, lambda t: 3 + 0 * t)
     s = senses(t, y, wz)
-    assert (s["orbit_start"], s["orbit_end"], s["spin_start"], s["spin_end"]) == (1, 1, 1, 1)
-    assert s["retrograde_turn"] == 0 and s["path_start"] == 1 and s["roll_reversal"] == 0
+    assert (s["orbit_start"], s["orbit_end"], s["orbit_last"], s["spin_start"], s["spin_end"]) == (1, 1, 1, 1, 1)
+    assert s["windows"] == 20 and s["windows_undecided"] == 0 and math.isnan(s["points_per_nutation"])
+    assert s["retrograde_turn"] == 0 and s["orbit_reversal"] == 0 and s["path_start"] == 1 and s["roll_reversal"] == 0
 
 
 def test_senses_catch_an_orbit_that_turns_against_the_spin():
-    """Negative-control pair: the same spin, the orbit's rate changes sign at t = 5."""
-    t, y, wz = _run(lambda t: 5 - t, lambda t: 3 + 0 * t)
+    """Negative-control pair: the same spin, the orbit's rate changes sign at t = 5.  The windows
+    around the reversal turn less than half a turn and stay undecided; the first to decide the
+    other way starts at 6.5 s."""
+    t, y, wz = _run(lambda t: 4 * (5 - t), lambda t: 3 + 0 * t)
     s = senses(t, y, wz)
-    assert s["orbit_start"] == 1 and s["orbit_end"] == -1 and s["retrograde_turn"] == 1
-    assert 4.5 <= s["t_retrograde"] <= 5.5
+    assert s["orbit_start"] == 1 and s["orbit_end"] == -1 and s["orbit_last"] == -1
+    assert s["retrograde_turn"] == 1 and s["retrograde_by_last_read"] == 1 and s["orbit_reversal"] == 1
+    assert 5 <= s["t_retrograde"] <= 7 and s["t_retrograde"] == s["t_orbit_reversal"]
+    assert 0 < s["windows_undecided"] < 10
+
+
+def test_senses_of_a_run_too_short_to_read_are_nan():
+    t, y, wz = _run(lambda t: 10 + 0 * t, lambda t: 3 + 0 * t)
+    s = senses(t[:30], y[:30], wz[:30])
+    assert all(math.isnan(v) for v in s.values())

@@ -17,7 +17,13 @@ slow path is extracted twice, by two filters that share nothing but the run:
 Both are in turns (> 0 counter-clockwise seen from above, z up).  The stroboscopic samples
 resolve a slow path only if they advance by less than :data:`RESOLVED_STEP` of a turn from
 one to the next (median); otherwise they alias the motion (a circle traversed at 0.57 turn a
-sample looks like one traversed backwards at 0.43) and that measure gives no sense.  A measure decides only
+sample looks like one traversed backwards at 0.43) and that measure gives no sense.  The
+running mean needs at least :data:`MIN_POINTS_PER_NUTATION` output points a nutation.  Neither
+filter can tell a slow drift from loops that are not locked to the nutation (their attenuated
+remainder also sweeps area): where the scales do not separate the two measures disagree, and
+the sense is left undecided -- which is the point of having two.  One median period serves
+the whole path, so a run whose nutation period changes much should be cut into windows of a
+few nutations first (the sweep engine does: ``verify.sweep.engine.orbit_windows``).  A measure decides only
 when its slow path turns by at least :data:`DECISIVE_TURNS`; two measures agree when both
 decide and have the same sign.  With no nutation (theta constant to round-off) the path
 itself is the slow path, and the same two reductions (winding and area) are applied to it.
@@ -31,6 +37,7 @@ import numpy as np
 
 DECISIVE_TURNS = 0.5  # half a turn of the slow path: less is a drift, not a circling
 RESOLVED_STEP = 0.25  # turns between stroboscopic samples: more, and the samples alias the motion
+MIN_POINTS_PER_NUTATION = 16  # the running mean (second order in the grid) is off by up to 20% at 5
 MIN_NUTATIONS = 4  # fewer maxima of theta than this: too short a run to filter
 
 
@@ -145,10 +152,11 @@ def circling(t, x, y, theta, nutation_floor: float = 1e-9) -> Circling:
     _, mx = running_mean(t, x, period)
     _, my = running_mean(t, y, period)
     strobe = winding_turns(sx, sy)
+    mean = area_turns(mx, my) if period / float(np.median(np.diff(t))) >= MIN_POINTS_PER_NUTATION else math.nan
     if np.median(np.abs(np.diff(np.unwrap(np.arctan2(sy - sy.mean(), sx - sx.mean()))))) / (2 * math.pi) > RESOLVED_STEP:
         strobe = math.nan  # the CM circles too fast to be sampled once per nutation: no slow path there
     return Circling(Sense("CM once per nutation, winding", strobe),
-                    Sense("CM mean over a nutation, area", area_turns(mx, my)), period, len(marks))
+                    Sense("CM mean over a nutation, area", mean), period, len(marks))
 
 
 def epicycle(t, guide_rate: float, loop_rate: float, guide_radius: float = 1.0, loop_radius: float = 0.3,

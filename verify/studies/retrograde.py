@@ -1,13 +1,22 @@
-"""The rolling ring's retrograde turn (issue 6): which dissipative term reproduces it, for which bodies.
+"""The rolling ring's retrograde turn: which dissipative term reproduces it, for which bodies.
 
 The paper ends (Figs. 9, 12 and the text after them) on the observation that spinning rings,
-unlike disks, end up orbiting against their spin, and on two competing explanations: air drag
-tuned by the hole (Jalali, Sarebangholi & Alam) and rolling friction (Borisov, Kilin &
-Karavaev).  Both are model terms in :mod:`models.ring_dissipation`; the shipped sweeps
+unlike disks, end up orbiting against their spin ("the end state motion (say clockwise) will be
+preceded by a counter-clockwise phase"), and on two competing explanations: air drag tuned by
+the hole (Jalali, Sarebangholi & Alam) and rolling friction (Borisov, Kilin & Karavaev).  Both
+are model terms in :mod:`models.ring_dissipation`; the shipped sweeps
 ``verify/sweep/specs/ring-retrograde-*.toml`` map, over the ring's shape (half-thickness h and
 wall w, from a flat disk to the paper's ring) and the coefficient c, whether a body spun like a
 coin turns retrograde before it falls flat.  A conservative control (c = 0, same starts, same
 duration) runs beside them.
+
+"Orbit" is the sense in which the centre of mass circles over many nutation loops -- its slow
+path, read in windows of 12 nutations by the two filters of :mod:`verify.circling` and
+undecided wherever they do not agree (:func:`verify.sweep.engine.senses`).  A run turns
+retrograde when its slow path starts in the sense of its spin omega.Z and ends against it, in
+the first and last windows that decide; it is undecided when fewer than two windows decide.
+The former reading -- the net turn of the line of nodes, which counts the loops -- is shown
+beside it for comparison only.
 
 The observation is "rings reverse, disks do not"; the verdict for a mechanism is read off the
 corners of the map: a flat disk (h = 0.01, w = 1), a flat ring (h = 0.01, w = 0.1366), a thick
@@ -105,55 +114,103 @@ def _at(rows: list, h: float, w: float, c=None) -> dict:
     raise KeyError((h, w, c))
 
 
+def _nan(v) -> bool:
+    return v is None or (isinstance(v, float) and math.isnan(v))
+
+
 def _yes(v) -> bool:
-    return v is not None and not (isinstance(v, float) and math.isnan(v)) and v > 0.5
+    return not _nan(v) and v > 0.5
+
+
+def _tally(rows: list) -> dict:
+    """Counts of the slow-path reading over ``rows``."""
+    return {"runs": len(rows), "judged": sum(not _nan(r["retrograde_turn"]) for r in rows),
+            "turned": sum(_yes(r["retrograde_turn"]) for r in rows),
+            "undecided": sum(_nan(r["retrograde_turn"]) for r in rows),
+            "too_short": sum(_nan(r["windows"]) for r in rows),
+            "read_judged": sum(not _nan(r["retrograde_by_last_read"]) for r in rows),
+            "read_turned": sum(_yes(r["retrograde_by_last_read"]) for r in rows),
+            "orbit_reversal": sum(_yes(r["orbit_reversal"]) for r in rows),
+            "end_read": sum(not _nan(r["orbit_last"]) and r["orbit_last"] != 0 for r in rows),
+            "node_turn": sum(_yes(r["node_retrograde_turn"]) for r in rows),
+            "roll_reversal": sum(_yes(r["roll_reversal"]) for r in rows),
+            "fell_flat": sum(r["outcome"] == "theta_stop" for r in rows)}
+
+
+def _state(v) -> str:
+    return "undecided" if _nan(v) else ("turns" if v > 0.5 else "does not turn")
+
+
+def _round(v, digits=2):
+    return None if _nan(v) else round(v, digits)
 
 
 def summarise(mechanism: str, results: dict) -> dict:
     spec, rows, seconds = results["sweep"]
     cspec, crows, cseconds = results["control"]
     cs = next(a.values for a in spec.axes if a.name == "c")
-    judged = [r for r in rows if r["retrograde_turn"] is not None]
     per_c = []
     for c in cs:
-        sel = [r for r in judged if abs(r["in_c"] - c) <= 1e-12 * c]
-        per_c.append({"c": f"{c:.4g}", "judged": len(sel), "retrograde_turn": sum(_yes(r["retrograde_turn"]) for r in sel),
-                      "roll_reversal": sum(_yes(r["roll_reversal"]) for r in sel),
-                      "fell_flat": sum(r["outcome"] == "theta_stop" for r in sel)})
+        sel = [r for r in rows if abs(r["in_c"] - c) <= 1e-12 * c]
+        per_c.append({"c": f"{c:.4g}", **_tally(sel)})
     bodies = []
     for name, h, w in BODIES:
         for c in cs:
             r = _at(rows, h, w, c)
             bodies.append({"body": name, "h": h, "w": w, "c": f"{c:.4g}", "outcome": r["outcome"],
-                           "t_stop": round(r["t_stop"], 2), "retrograde_turn": _yes(r["retrograde_turn"]),
-                           "t_retrograde": None if not _yes(r["retrograde_turn"]) else round(r["t_retrograde"], 2),
-                           "orbit": [r["orbit_start"], r["orbit_end"]], "spin": [r["spin_start"], r["spin_end"]],
+                           "t_stop": round(r["t_stop"], 2), "retrograde_turn": _state(r["retrograde_turn"]),
+                           "retrograde_by_last_read": _state(r["retrograde_by_last_read"]),
+                           "t_retrograde": _round(r["t_retrograde"]),
+                           "windows": None if _nan(r["windows"]) else int(r["windows"]),
+                           "windows_undecided": None if _nan(r["windows_undecided"]) else int(r["windows_undecided"]),
+                           "orbit": [r["orbit_start"], r["orbit_end"]],
+                           "t_orbit": [_round(r["t_orbit_start"]), _round(r["t_orbit_end"])],
+                           "orbit_last": r["orbit_last"], "spin": [r["spin_start"], r["spin_end"]],
+                           "orbit_reversal": "undecided" if _nan(r["orbit_reversal"]) else
+                           ("yes" if r["orbit_reversal"] > 0.5 else "no"),
+                           "last_window_turns": [_round(r["strobe_last"]), _round(r["mean_last"])],
+                           "node_turn": [r["node_turn_start"], r["node_turn_end"]],
+                           "node_retrograde_turn": _yes(r["node_retrograde_turn"]),
                            "roll_reversal": _yes(r["roll_reversal"]), "energy_drift": f"{r['energy_drift']:.1e}"})
     # judged where both fell flat (theta < theta_stop) within t_end: "before the ring falls flat"
     fell = {b["c"] for b in bodies if b["body"] == "paper's ring" and b["outcome"] == "theta_stop"} & \
         {b["c"] for b in bodies if b["body"] == "flat disk" and b["outcome"] == "theta_stop"}
-    ring_turns = [b["retrograde_turn"] for b in bodies if b["body"] == "paper's ring" and b["c"] in fell]
-    disk_turns = [b["retrograde_turn"] for b in bodies if b["body"] == "flat disk" and b["c"] in fell]
-    control_turns = sum(_yes(r["retrograde_turn"]) for r in crows)
-    reproduces = bool(fell) and all(ring_turns) and not any(disk_turns)
+    ring = [b["retrograde_turn"] for b in bodies if b["body"] == "paper's ring" and b["c"] in fell]
+    disk = [b["retrograde_turn"] for b in bodies if b["body"] == "flat disk" and b["c"] in fell]
+    ring_read = [b["retrograde_by_last_read"] for b in bodies if b["body"] == "paper's ring" and b["c"] in fell]
+    disk_read = [b["retrograde_by_last_read"] for b in bodies if b["body"] == "flat disk" and b["c"] in fell]
+    control = _tally(crows)
+    if not fell:
+        reproduces = None
+    elif "does not turn" in ring or "turns" in disk:
+        reproduces = False
+    elif "undecided" in ring or "undecided" in disk:
+        reproduces = None
+    else:
+        reproduces = True
     by_axis = {}
     for axis in ("h", "w"):
         values = next(a.values for a in spec.axes if a.name == axis)
-        by_axis[axis] = [{axis: round(v, 4), "judged": sum(1 for r in judged if abs(r[f"in_{axis}"] - v) < 1e-12),
-                          "turned": sum(_yes(r["retrograde_turn"]) for r in judged if abs(r[f"in_{axis}"] - v) < 1e-12)}
+        by_axis[axis] = [{axis: round(v, 4), **_tally([r for r in rows if abs(r[f"in_{axis}"] - v) < 1e-12])}
                          for v in values]
-    turned = [r for r in judged if _yes(r["retrograde_turn"])]
+    turned = [r for r in rows if _yes(r["retrograde_by_last_read"])]
+    # how a turn (as far as read) comes about: the orbit reversing, or the spin reversing under the orbit
     by_spin = sum(r["spin_start"] != r["spin_end"] and r["orbit_start"] == r["orbit_end"] for r in turned)
-    by_orbit = sum(r["orbit_start"] != r["orbit_end"] and r["spin_start"] == r["spin_end"] for r in turned)
+    by_orbit = sum(r["orbit_start"] != r["orbit_end"] for r in turned)
+    resolution = [r["points_per_nutation"] for r in rows + crows if not _nan(r["points_per_nutation"])]
     return {
         "mechanism": mechanism, "spec": f"verify/sweep/specs/{spec_path(mechanism).name}", "trajectories": len(rows),
-        "turns": len(turned), "turns_by_spin_reversal": by_spin, "turns_by_orbit_reversal": by_orbit,
-        "by_h": by_axis["h"], "by_w": by_axis["w"],
-        "per_c": per_c, "bodies": bodies, "control_trajectories": len(crows), "control_retrograde": control_turns,
-        "control_fell_flat": sum(r["outcome"] == "theta_stop" for r in crows),
+        **_tally(rows), "turns_by_spin_reversal": by_spin, "turns_by_orbit_reversal": by_orbit,
+        "windows": int(sum(r["windows"] for r in rows if not _nan(r["windows"]))),
+        "windows_undecided": int(sum(r["windows_undecided"] for r in rows if not _nan(r["windows_undecided"]))),
+        "by_h": by_axis["h"], "by_w": by_axis["w"], "per_c": per_c, "bodies": bodies,
+        "control": control, "control_windows": int(sum(r["windows"] for r in crows if not _nan(r["windows"]))),
+        "control_windows_undecided": int(sum(r["windows_undecided"] for r in crows
+                                             if not _nan(r["windows_undecided"]))),
+        "min_points_per_nutation": round(min(resolution), 1) if resolution else None,
         "max_energy_drift": f"{max(r['energy_drift'] for r in rows + crows):.1e}",
         "reproduces_observation": reproduces,
-        "verdict": _verdict(mechanism, reproduces, ring_turns, disk_turns, control_turns),
+        "verdict": _verdict(mechanism, reproduces, ring, disk, control, ring_read, disk_read),
         "seconds": round(seconds + cseconds, 1),
         "figure": render(spec, rows), "figure_roll": render(_with_plot(spec, "roll_reversal"), rows,
                                                            title=f"ring+{mechanism}: rolling direction reversed (1 = yes)"),
@@ -166,23 +223,37 @@ def _with_plot(spec, quantity: str):
     return replace(spec, plot={**spec.plot, "quantity": quantity})
 
 
-def _verdict(mechanism, reproduces, ring_turns, disk_turns, control_turns) -> str:
-    if not ring_turns:
+def _verdict(mechanism, reproduces, ring: list, disk: list, control: dict, ring_read=(), disk_read=()) -> str:
+    """One sentence per mechanism from the slow-path reading of the paper's ring and the flat disk."""
+    if not ring:
         return f"{mechanism}: neither the paper's ring nor a flat disk fell flat within t_end at the same c: not judged"
-    ring = "turns retrograde" if all(ring_turns) else ("turns retrograde at some c" if any(ring_turns) else "does not turn")
-    disk = "turns retrograde too" if all(disk_turns) else ("turns at some c" if any(disk_turns) else "does not turn")
-    text = (f"{mechanism}: the paper's ring {ring}, a flat disk {disk}; "
-            f"{'reproduces' if reproduces else 'does not reproduce'} 'rings reverse, disks do not'")
-    if control_turns:
-        text += f" (caution: {control_turns} conservative control runs turn as well)"
+
+    def say(states, body):
+        if len(set(states)) == 1:
+            return f"{body} {states[0]}"
+        return f"{body}: " + ", ".join(f"{states.count(s)} of {len(states)} c {s}"
+                                      for s in ("turns", "does not turn", "undecided") if s in states)
+
+    outcome = {True: "reproduces", False: "does not reproduce",
+               None: "cannot say whether it reproduces"}[reproduces]
+    text = (f"{mechanism}: {say(list(ring), 'the paper' + chr(39) + 's ring')}, {say(list(disk), 'a flat disk')} "
+            f"(slow path, end state read); {outcome} 'rings reverse, disks do not'")
+    if ring_read and (list(ring_read) != list(ring) or list(disk_read) != list(disk)):
+        text += (f" -- as far as the slow path can be read, {say(list(ring_read), 'the paper' + chr(39) + 's ring')}, "
+                 f"{say(list(disk_read), 'a flat disk')}")
+    if control["turned"] or control["read_turned"]:
+        text += (f" (caution: {max(control['turned'], control['read_turned'])} conservative control runs turn "
+                 "as well)")
     return text
 
 
 def render_markdown(study: dict) -> list:
     """The report's section on the retrograde turn (figures named retrograde-<mechanism>[-roll].png)."""
+    first = next(iter(study.values()))
+    ppn = [s["min_points_per_nutation"] for s in study.values() if s["min_points_per_nutation"]]
     lines = [
         "",
-        "## The ring's retrograde turn (issue 6)",
+        "## The ring's retrograde turn: air drag or rolling friction",
         "",
         "Both explanations the paper cites are explicit model terms (models/ring_dissipation.py): **air drag** tuned by",
         "the hole (Jalali et al.: tau = -c A(w) |omega_perp| omega_perp, A(w) = 1 - (1 - w)^5 the rocking drag of an",
@@ -191,43 +262,74 @@ def render_markdown(study: dict) -> list:
         "property. The sweeps (verify/sweep/specs/ring-retrograde-*.toml, run by `python -m verify sweep`) start every",
         "body as a coin is spun -- theta0 = 1.2, phidot0 = 40 s^-1, psidot0 = 0 -- over its shape (half-thickness h and",
         "wall w in units of R, I1 and I3 of an annular cylinder; a flat disk is h = 0.01, w = 1, the paper's ring",
-        "h = 0.4344, w = 0.1366) and the coefficient c, until theta < 0.1 (flat) or 120 s. A run turns retrograde when",
-        "its orbit (the net turn of the line of nodes over a twentieth of the run; the CM's mean path circles in that",
-        "sense) starts in the sense of its spin omega.Z and ends against it. Also recorded: whether the direction in",
-        "which the CM rolls along e1 -- hence the centripetal friction force, Jalali et al.'s stated signature -- has",
-        "reversed. The conservative control (c = 0) runs the same starts for the same time.",
+        "h = 0.4344, w = 0.1366) and the coefficient c, until theta < 0.1 (flat) or 120 s. The conservative control",
+        "(c = 0) runs the same starts for the same time.",
         "",
-        "| mechanism | c | runs judged | retrograde turn | rolling direction reversed | fell flat |",
-        "|---|---:|---:|---:|---:|---:|",
+        "**Orbit** is the sense in which the centre of mass circles over many nutation loops: its *slow path*. Each run",
+        "is cut into windows of 12 nutations (the nutation period shrinks from 0.2-0.3 s to 0.05 s as a ring decays, so",
+        "windows count nutations, not seconds) and in each the slow path is read twice, by filters that share nothing",
+        "but the run (verify/circling.py): the CM sampled once per nutation (its winding) and the CM averaged over a",
+        "nutation (the area its mean path sweeps). A window's orbit sense counts only where both turn half a turn or",
+        "more the same way; otherwise the window is **undecided** and neither measure is preferred. A run **turns",
+        "retrograde** when its slow path goes with its spin omega.Z in the first window that decides and against it in",
+        "its last window; it is **undecided** when its last window does not decide (end state not read) or fewer than",
+        "two windows decide ('too short': fewer than 24 nutations before it falls flat). 'As far as read' is the same",
+        "verdict with the last window that decides standing for the end. 'Node-turn reading' is the former criterion --",
+        "the net turn of the line of nodes e1, which counts the loops, not the slow path -- on the same windows, for",
+        f"comparison only. Output every 2.5 ms: at least {min(ppn) if ppn else '-'} points in the shortest nutation of "
+        "any run.",
+        "",
+        "| mechanism | c | runs | turn retrograde | no turn | undecided (too short) | turn / judged as far as read "
+        "| slow path reversed | node-turn reading | rolling direction reversed | fell flat |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
+
+    def row(m, c, t, roll):
+        return (f"| {m} | {c} | {t['runs']} | {t['turned']} | {t['judged'] - t['turned']} "
+                f"| {t['undecided']} ({t['too_short']}) | {t['read_turned']}/{t['read_judged']} | {t['orbit_reversal']} "
+                f"| {t['node_turn']} | {roll} | {t['fell_flat']} |")
+
     for m, s in study.items():
-        for pc in s["per_c"]:
-            lines.append(f"| {m} | {pc['c']} | {pc['judged']} | {pc['retrograde_turn']} | {pc['roll_reversal']} "
-                         f"| {pc['fell_flat']} |")
-        lines.append(f"| {m}, control c = 0 | 0 | {s['control_trajectories']} | {s['control_retrograde']} | - "
-                     f"| {s['control_fell_flat']} |")
-    lines += ["", "Retrograde turns by thickness h and by wall w (runs judged, over the other axis and both c):", "",
-              "| mechanism | " + " | ".join(f"h = {x['h']}" for x in next(iter(study.values()))["by_h"]) + " | "
-              + " | ".join(f"w = {x['w']}" for x in next(iter(study.values()))["by_w"]) + " |",
-              "|---|" + "---:|" * (len(next(iter(study.values()))["by_h"]) + len(next(iter(study.values()))["by_w"]))]
+        lines += [row(m, pc["c"], pc, pc["roll_reversal"]) for pc in s["per_c"]]
+        lines.append(row(f"{m}, control", 0, s["control"], "-"))
+    lines += ["", "Windows undecided: " + "; ".join(
+        f"{m} {s['windows_undecided']} of {s['windows']} (control {s['control_windows_undecided']} of "
+        f"{s['control_windows']})" for m, s in study.items()) + ".", ""]
+    lines += ["Slow-path retrograde turns by thickness h and by wall w (turned/judged with the end state read; as far "
+              "as read in brackets; over the other axis and both c):", "",
+              "| mechanism | " + " | ".join(f"h = {x['h']}" for x in first["by_h"]) + " | "
+              + " | ".join(f"w = {x['w']}" for x in first["by_w"]) + " |",
+              "|---|" + "---:|" * (len(first["by_h"]) + len(first["by_w"]))]
     for m, s in study.items():
-        lines.append(f"| {m} | " + " | ".join(f"{x['turned']}/{x['judged']}" for x in s["by_h"] + s["by_w"]) + " |")
-    lines += ["", "The corners of the maps:", "",
-              "| mechanism | body | h | w | c | outcome | t_stop (s) | orbit start/end | spin start/end | retrograde "
-              "(at t) | rolling reversed |", "|---|---|---:|---:|---:|---|---:|---|---|---|---|"]
+        lines.append(f"| {m} | " + " | ".join(f"{x['turned']}/{x['judged']} ({x['read_turned']}/{x['read_judged']})"
+                                               for x in s["by_h"] + s["by_w"]) + " |")
+    lines += ["", "The corners of the maps. Senses +/-, 0 undecided, '.' nothing to read; orbit start/end are the first "
+              "and last windows that decide (their span in seconds), spin start/end the run's first and last windows; "
+              "last window: its orbit sense and the two measures' turns there (once per nutation / mean).", "",
+              "| mechanism | body | h | w | c | outcome | t_stop (s) | windows (undecided) | orbit start/end (s) "
+              "| spin start/end | retrograde turn | as far as read (first retrograde window, s) | last window "
+              "| node-turn start/end | rolling reversed |",
+              "|---|---|---:|---:|---:|---|---:|---:|---|---|---|---|---|---|---|"]
     for m, s in study.items():
         for b in s["bodies"]:
+            read = b["retrograde_by_last_read"] + (f" ({b['t_retrograde']})" if b["t_retrograde"] is not None else "")
+            windows = "." if b["windows"] is None else f"{b['windows']} ({b['windows_undecided']})"
+            last = f"{_one(b['orbit_last'])}: {_t(b['last_window_turns'][0])}/{_t(b['last_window_turns'][1])}"
             lines.append(f"| {m} | {b['body']} | {b['h']} | {b['w']} | {b['c']} | {b['outcome']} | {b['t_stop']} "
-                         f"| {_sign(b['orbit'])} | {_sign(b['spin'])} | "
-                         f"{'yes (' + str(b['t_retrograde']) + ' s)' if b['retrograde_turn'] else 'no'} "
+                         f"| {windows} | {_sign(b['orbit'])} ({_t(b['t_orbit'][0])}-{_t(b['t_orbit'][1])}) "
+                         f"| {_sign(b['spin'])} | {b['retrograde_turn']} | {read} | {last} | {_sign(b['node_turn'])} "
                          f"| {'yes' if b['roll_reversal'] else 'no'} |")
-    how = "; ".join(f"{m}: {s['turns_by_spin_reversal']} of its {s['turns']} retrograde turns are the spin omega.Z "
-                    f"reversing while the orbit keeps its sense, {s['turns_by_orbit_reversal']} the orbit reversing"
-                    for m, s in study.items())
+    how = "; ".join(f"{m}: {s['read_turned']} runs turn as far as read ({s['turns_by_orbit_reversal']} of them by "
+                    f"the orbit reversing, {s['turns_by_spin_reversal']} by the spin reversing under an orbit that "
+                    f"keeps its sense), {s['turned']} with the end state read, against {s['node_turn']} by the "
+                    "node-turn reading" for m, s in study.items())
     lines += ["", "**Verdict.** " + " ".join(s["verdict"] + "." for s in study.values()),
-              f"How the runs end up retrograde -- {how}. Runs that fall flat within a few tenths of a second are "
-              "judged on windows too short to hold a nutation, which is why the spread of c matters more than any "
-              "single point.",
+              f"How the runs turn -- {how}. Where windows are undecided late in a run the two measures mostly disagree "
+              "outright (e.g. -2 turns once per nutation against +9 averaged) or the once-per-nutation samples step "
+              "more than a quarter turn (aliased, no reading): near flat the CM circles at 0.6-0.9 turns per nutation, "
+              "so the loops and the orbit have no separate time scales and there is no slow path to read. "
+              "Conservative controls that turn: "
+              + ", ".join(f"{m} {s['control']['turned']} of {s['control']['runs']}" for m, s in study.items()) + ".",
               f"Energy: E + W = E(0) along every run to {max(float(s['max_energy_drift']) for s in study.values()):.0e} "
               "of the energy's scale.", ""]
     for m in study:
@@ -236,5 +338,13 @@ def render_markdown(study: dict) -> list:
 
 
 def _sign(pair) -> str:
-    return "/".join("-" if v is None or (isinstance(v, float) and math.isnan(v)) else ("+" if v > 0 else "-" if v < 0
-                                                                                        else "0") for v in pair)
+    return "/".join(_one(v) for v in pair)
+
+
+def _one(v) -> str:
+    """+, - or 0 (undecided) for a sense; '.' where there is none to read."""
+    return "." if _nan(v) else ("+" if v > 0 else "-" if v < 0 else "0")
+
+
+def _t(v) -> str:
+    return "." if v is None else f"{v:g}"

@@ -68,11 +68,15 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
+#: The orbit/spin senses of a run (verify.sweep.engine.senses documents each).
+SENSE_KEYS = ("orbit_start", "orbit_end", "orbit_last", "t_orbit_start", "t_orbit_end", "orbit_reversal",
+              "t_orbit_reversal", "spin_start", "spin_end", "retrograde_turn", "retrograde_by_last_read",
+              "retrograde_end", "t_retrograde", "windows", "windows_undecided", "strobe_last", "mean_last",
+              "points_per_nutation", "node_turn_start", "node_turn_end", "node_retrograde_turn", "path_start",
+              "path_end", "path_reversal", "roll_start", "roll_end", "roll_reversal", "t_roll_reversal")
 #: Quantities a run can record beyond outcome, t_stop and energy_drift (see verify.sweep.engine).
-QUANTITIES = ("max_theta", "min_theta", "final_theta", "max_theta_deviation", "growth",
-              "orbit_start", "orbit_end", "spin_start", "spin_end", "retrograde_end", "retrograde_turn",
-              "t_retrograde", "path_start", "path_end", "path_reversal", "roll_start", "roll_end", "roll_reversal",
-              "t_roll_reversal") + tuple(f"final_{n}" for n in STATE_NAMES)
+QUANTITIES = ("max_theta", "min_theta", "final_theta", "max_theta_deviation", "growth") + SENSE_KEYS \
+    + tuple(f"final_{n}" for n in STATE_NAMES)
 ALWAYS = ("t_stop", "energy_drift")
 GEOMETRIES = ("annulus",)
 #: The axis that sets the rate of each steady motion (sleeping: psidot is the spin, phidot = 0).
