@@ -33,7 +33,11 @@ def test_trajectory_json_in_double(capsys):
     assert list(rec["state"]) == ["theta", "phi", "psi", "thetadot", "phidot", "psidot", "x", "y"]
     assert all(isinstance(v, float) for v in rec["state"].values())
     assert set(rec["invariants"]) == {"energy", "chaplygin_1", "chaplygin_2"}
-    assert set(rec["invariants"]["energy"]) == {"initial", "final", "max_rel_drift"}
+    assert list(rec["invariants"]["energy"]) == ["initial", "final", "max_abs_drift", "max_rel_drift", "term_scale",
+                                                 "max_drift_vs_terms", "max_drift_vs_terms_in_eps"]
+    e = rec["invariants"]["energy"]
+    assert e["max_rel_drift"] == e["max_abs_drift"] / abs(e["initial"])
+    assert e["max_drift_vs_terms"] == e["max_abs_drift"] / e["term_scale"]
 
 
 def test_trajectory_json_in_quad_carries_every_digit(capsys):

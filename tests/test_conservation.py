@@ -10,8 +10,12 @@ terms).  Measured (``python -m verify report``): at most 5.1 eps sqrt(N) (the di
 Chaplygin integrals, which also carry the rounding of the Legendre-function basis).
 
 Bound in quad: below 1e-28 (the issue's requirement; eps sqrt(N) is ~2e-32 for N = 1e4,
-so this leaves four orders for the constant).  Drift is measured against the largest
-magnitude of the invariant's terms along the run (verify/invariants.py).
+so this leaves four orders for the constant).  Both bounds are on the drift measured against
+the largest magnitude of the invariant's terms along the run, ``max_drift_vs_terms``
+(verify/invariants.py): the magnitude that is rounded, which is what the argument counts.
+The relative drift ``max_rel_drift`` = max |I - I(0)| / |I(0)| is that times term scale / |I(0)|
+(for the disk's energy, a near-cancellation of its expanded terms when it leans far over, a
+factor of 204 on its 40 s run here): tests/test_drift.py.
 """
 from __future__ import annotations
 
@@ -38,7 +42,7 @@ def test_double_drift_follows_brouwer(name, equations):
     assert sol.steps >= 10_000
     bound = 10 * sol.precision.eps * math.sqrt(sol.steps)
     for inv in sol.invariants.values():
-        assert inv.max_rel_drift <= bound, f"{inv.name}: {inv.max_rel_drift:.3e} > {bound:.3e}"
+        assert inv.max_drift_vs_terms <= bound, f"{inv.name}: {inv.max_drift_vs_terms:.3e} > {bound:.3e}"
 
 
 @pytest.mark.parametrize("name", MODEL_NAMES)
@@ -47,10 +51,31 @@ def test_quad_drift_below_1e_28(name):
     assert sol.outcome == "ok"
     assert sol.steps >= 10_000
     for inv in sol.invariants.values():
-        assert inv.max_rel_drift < 1e-28, f"{inv.name}: {inv.max_rel_drift:.3e}"
+        assert inv.max_drift_vs_terms < 1e-28, f"{inv.name}: {inv.max_drift_vs_terms:.3e}"
 
 
 def test_mpfr_drift_scales_with_its_epsilon():
     sol = solve("disk", "2", STANDARD_STATES["disk"], precision="mp:160", n_eval=21)
     bound = 10 * sol.precision.eps * math.sqrt(sol.steps)
-    assert all(inv.max_rel_drift <= bound for inv in sol.invariants.values())
+    assert all(inv.max_drift_vs_terms <= bound for inv in sol.invariants.values())
+
+
+def test_table_names_each_figure_and_marks_undefined_ratios():
+    """The Markdown table and JSON rows: one column per figure, n/a (null in JSON) where a ratio
+    is undefined, and no prose line that the report's HTML converter would read as a table row."""
+    import json
+
+    from verify.conservation import render_markdown
+    from verify.report import render_html
+
+    row = {"model": "m", "equations": "derived", "precision": "double", "t_end": "10", "outcome": "ok", "steps": 7,
+           "max_abs_drift": {"energy": 2e-13, "p": 3e-16}, "max_rel_drift": {"energy": 2e-16, "p": None},
+           "max_drift_vs_terms": {"energy": 1e-17, "p": 1.5e-16}, "max_drift_vs_terms_in_eps": {"energy": 0.05, "p": 0.68}}
+    assert json.loads(json.dumps(row)) == row  # plain JSON: no NaN
+    md = render_markdown([row], {})
+    table = [ln for ln in md.splitlines() if ln.startswith("|")]
+    assert "max rel drift" in table[0] and "max drift vs terms" in table[0] and "max abs drift" in table[0]
+    assert table[2] == "| m | derived | double | ok | 7 | energy | 2.000e-13 | 2.000e-16 | 1.000e-17 | 0.05 |"
+    assert table[3] == "| m | derived | double | ok | 7 | p | 3.000e-16 | n/a | 1.500e-16 | 0.68 |"
+    html = render_html(md.split("\n## Provenance")[0], {})
+    assert html.count("<tr>") == 3 and html.count("<th>") == 10 and "|I(0)|" in html

@@ -1,8 +1,15 @@
 """The verification suite: integration at a chosen precision, invariants, and (later) claims.
 
 >>> from verify import solve
->>> sol = solve("disk", t_end=2.0, state={"theta": 1.2, "psidot": 10.0}, precision="quad")
->>> sol.outcome, sol.invariants["energy"].max_rel_drift
+>>> sol = solve("disk", t_end="2", state={"theta": "1.2", "psidot": "10"}, precision="quad")
+>>> sol.outcome, sol.invariants["energy"].max_rel_drift   # max |E - E(0)| / |E(0)|
+('ok', 5.187782963507209e-33)
+
+Each invariant is a :class:`InvariantTrace` with ``values`` and three drifts:
+``max_abs_drift`` = max |I(t) - I(0)|; ``max_rel_drift`` = that / |I(0)| (NaN where |I(0)| is
+negligible against the magnitudes of I's terms); ``max_drift_vs_terms`` = that / the largest
+sum of those magnitudes along the run (``max_drift_vs_terms_in_eps`` in units of epsilon; on
+this run 3.0e-35 = 0.16 eps: the disk's |E| is 0.006 of its term scale).
 """
 from .integrate import IntegrationError, InvariantTrace, Trajectory, solve
 from .precision import Precision, parse_precision

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 
 from models import ALL_NAMES, get_model, sources
@@ -45,10 +46,24 @@ def trajectory_record(sol) -> dict:
         "t": p.to_json(sol.t[-1]),
         "steps": sol.steps,
         "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
-        "invariants": {
-            name: {"initial": p.to_json(tr.initial), "final": p.to_json(tr.final), "max_rel_drift": tr.max_rel_drift}
-            for name, tr in sol.invariants.items()
-        },
+        "invariants": {name: _drifts(p, tr) for name, tr in sol.invariants.items()},
+    }
+
+
+def _drifts(p, tr) -> dict:
+    """initial, final and the drifts of one invariant (verify.invariants.InvariantTrace); an
+    undefined ratio (NaN: I(0) negligible, or a zero term scale) is null."""
+    def ratio(x):
+        return None if math.isnan(x) else x
+
+    return {
+        "initial": p.to_json(tr.initial),
+        "final": p.to_json(tr.final),
+        "max_abs_drift": tr.max_abs_drift,
+        "max_rel_drift": ratio(tr.max_rel_drift),
+        "term_scale": tr.term_scale,
+        "max_drift_vs_terms": ratio(tr.max_drift_vs_terms),
+        "max_drift_vs_terms_in_eps": ratio(tr.max_drift_vs_terms_in_eps),
     }
 
 
@@ -60,9 +75,15 @@ def _text(record: dict) -> str:
         "state",
     ]
     lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
-    lines.append("invariants  (initial, final, max relative drift)")
-    lines += [f"  {n:<12} {v['initial']}  {v['final']}  {v['max_rel_drift']:.3e}" for n, v in record["invariants"].items()]
+    lines.append("invariants  (initial, final; max |I - I(0)|, that / |I(0)|, that / term scale in eps)")
+    lines += [f"  {n:<12} {v['initial']}  {v['final']}  {v['max_abs_drift']:.3e}  {_num(v['max_rel_drift'], '.3e')}"
+              f"  {_num(v['max_drift_vs_terms_in_eps'], '.3g')}"
+              for n, v in record["invariants"].items()]
     return "\n".join(lines)
+
+
+def _num(x, fmt: str) -> str:
+    return "n/a" if x is None else format(x, fmt)
 
 
 def cmd_trajectory(args) -> int:

@@ -59,7 +59,9 @@ class Trajectory:
     steps : int
         Taylor steps taken.
     invariants : dict of name -> InvariantTrace
-        Energy first, then the model's other conserved quantities.
+        Energy first, then the model's other conserved quantities; each with its values and
+        ``max_abs_drift``, ``max_rel_drift`` (over |I(0)|) and ``max_drift_vs_terms`` (over
+        the magnitudes of I's terms), see :class:`verify.invariants.InvariantTrace`.
     normal_force : ndarray or None
         N / (M g) on the grid (contact holds while it is positive).
     """

@@ -170,7 +170,7 @@ class PrecisionRun:
     omega3_error: float  # |omega3(T) - omega3_ref(T)| / |phidot0|
     omega3_scale: float  # |omega3| / |phidot| on the state (0 on the cm-at-rest family of the disk)
     cm_drift: float  # |x, y of C at T - reference| in units of R
-    energy_drift: float
+    energy_drift: float  # max |E(t) - E(0)| / |E(0)| (InvariantTrace.max_rel_drift)
 
 
 def _omega3(y):
