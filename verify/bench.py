@@ -1,4 +1,4 @@
-"""Benchmarks (issue 5): accuracy for the time spent, long-run energy error, sweep throughput, JIT cost.
+"""Benchmarks: accuracy for the time spent, long-run energy error, sweep throughput, JIT cost.
 
 ``python -m verify bench`` (and the last stage of ``python -m verify report``) measures, in
 one run, and writes ``reports/BENCHMARKS.md``, ``reports/benchmarks.json`` and two figures.
@@ -468,7 +468,7 @@ def _throughput(system, pars, ys, T: float, k_scipy: int) -> dict:
             "max_difference_to_loop": {k2: float(f"{v:.2e}") for k2, v in agree.items()}, "scipy_subset": k_scipy}
 
 
-# --- the stability map (issue 4's speed target) ---------------------------------------------------
+# --- the stability map ---------------------------------------------------
 
 def stability_map_speed(quick: bool, progress) -> dict:
     """The report's 100 x 100 map of the disk's diameter spin (10^4 runs of 10 s), timed alone."""
@@ -680,7 +680,7 @@ def render_markdown(r: dict) -> str:
                   for t in s["tolerances"]]
         lines += [""]
     lines += [
-              "## Stability map (issue 4)", "",
+              "## Stability map", "",
               f"The report's map of the disk's spin about a vertical diameter, {r['stability_map']['trajectories']:,} "
               f"trajectories of {r['stability_map']['t_end']:g} s (reduced system, batch size "
               f"{r['stability_map']['batch_size']}, ensemble on {r['stability_map']['threads']} threads, run alone): "

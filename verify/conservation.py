@@ -1,7 +1,7 @@
 """The conservation table: every model and equation source, in double and quad.
 
-Until the claims report exists (issue 3) this is what ``make report`` writes:
-``reports/conservation.md`` and ``reports/conservation.json``.  Each row is a 10 s run
+``make report`` writes it to ``reports/conservation.md`` and ``reports/conservation.json``
+and into the report's conservation section.  Each row is a 10 s run
 from the model's standard state; for every invariant it gives max |I(t) - I(0)|
 (``max_abs_drift``), that over |I(0)| (``max_rel_drift``, null where I(0) is negligible) and
 over the largest sum of the magnitudes of I's terms (``max_drift_vs_terms``, also in units of

@@ -22,7 +22,7 @@ def render(fig_data: FigureData) -> bytes:
         ax.plot(run.x, run.y, lw=0.8)
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("x / R")
-        ax.set_title(f"{run.label}\n{run.outcome}, energy drift {run.energy_drift:.1e}", fontsize=8)
+        ax.set_title(f"{run.label}\n{run.outcome}, max|E - E(0)|/|E(0)| = {run.energy_drift:.1e}", fontsize=8)
         for i, (name, label) in enumerate(ROWS[1:], start=1):
             a = axes[i][j]
             a.plot(run.t, getattr(run, name), lw=0.8)

@@ -15,11 +15,9 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from .claims import CONFIRMED, ERRATUM, NOT_CHECKABLE, all_claims, missing
-from .claims.base import Claim, Evaluation
+from .claims import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS, all_claims, missing
+from .claims.base import Claim, Evaluation, quote_fragments
 from .provenance import provenance, write_atomic
-
-VERDICTS = (CONFIRMED, ERRATUM, NOT_CHECKABLE)
 
 
 def evaluate_all(progress=None) -> list:
@@ -35,50 +33,79 @@ def evaluate_all(progress=None) -> list:
 
 
 def result_record(claim: Claim, ev: Evaluation) -> dict:
-    rec = {"id": claim.id, "source": claim.source, "statement": claim.statement, "verdict": ev.verdict,
-           "expected": ev.expected, "observed": ev.observed, "detail": ev.detail}
+    rec = {"id": claim.id, "source": claim.source, "statement": claim.statement, "quote": list(quote_fragments(claim.quote)),
+           "verdict": ev.verdict, "expected": ev.expected, "observed": ev.observed, "detail": ev.detail}
+    if claim.reading:
+        rec["reading"] = claim.reading
     rec["method"] = claim.method
     rec["tolerance"] = claim.tolerance
     if ev.correction:
         rec["correction"] = ev.correction
+    if ev.verdict == ERRATUM:
+        rec["severity"] = claim.severity
+    if ev.qualification:
+        rec["qualification"] = ev.qualification
+    if ev.measures:
+        rec["measures"] = [{"measure": n, "value": v} for n, v in ev.measures]
     return rec
+
+
+def _quote_text(claim: Claim) -> str:
+    return " ... ".join(quote_fragments(claim.quote))
 
 
 def _md_escape(text: str) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
-def render_markdown(results: list, conservation_md: str, prov: dict, figure_dir: str = "figures") -> str:
+def render_markdown(results: list, conservation_md: str, prov: dict, figure_dir: str = "figures",
+                    summary: dict = None) -> str:
+    from .summary import render as render_summary
+
     counts = Counter(ev.verdict for _, ev in results)
     eqs, figs = missing()
     lines = [
         "# Verification report",
         "",
-        "Every numbered equation and figure caption of `../shared/paper.md`, each with a verdict from an independent",
-        "route (sympy identities against the rows derived from the vectors, mpmath numbers, heyoka runs).",
+        "Every numbered equation and figure caption of `../shared/paper.md`, each quoted and given a verdict from an",
+        "independent route (sympy identities against the rows derived from the vectors, mpmath numbers, heyoka runs",
+        "read by two measures each).",
         "",
-        "| verdict | claims |",
-        "|---|---:|",
     ]
+    if summary is not None:
+        lines += render_summary(summary)
+    lines += ["| verdict | claims |", "|---|---:|"]
     lines += [f"| {v} | {counts.get(v, 0)} |" for v in VERDICTS]
     lines += [f"| total | {len(results)} |", ""]
     if eqs or figs:
         lines += [f"Not yet covered by a claim: equations {eqs or 'none'}; figures {figs or 'none'}.", ""]
-    lines += ["## Errata", ""]
+    lines += ["## Errata, by severity", ""]
+    for severity in SEVERITIES:
+        for claim, ev in results:
+            if ev.verdict == ERRATUM and claim.severity == severity:
+                lines += [f"### {claim.source} ({severity})", "",
+                          f"- **the paper:** {_quote_text(claim)}",
+                          *([f"- **read as:** {claim.reading}"] if claim.reading else []),
+                          f"- **as printed:** {ev.observed}",
+                          f"- **corrected:** {ev.correction}",
+                          f"- **evidence:** {ev.expected}. {ev.detail}", ""]
+    lines += ["## Qualified captions", ""]
     for claim, ev in results:
-        if ev.verdict == ERRATUM:
-            lines += [f"### {claim.source}: {claim.statement}", "",
-                      f"- **as printed:** {ev.observed}",
-                      f"- **corrected:** {ev.correction}",
+        if ev.verdict == QUALIFIED:
+            lines += [f"### {claim.source}", "", f"- **the paper:** {_quote_text(claim)}",
+                      *([f"- **read as:** {claim.reading}"] if claim.reading else []),
+                      f"- **qualification:** {ev.qualification}",
                       f"- **evidence:** {ev.expected}. {ev.detail}", ""]
     section = None
     for claim, ev in results:
         if claim.section != section:
             section = claim.section
-            lines += [f"## {section}", "", "| source | statement | verdict | independent route | paper | detail |",
+            lines += [f"## {section}", "", "| source | the paper | verdict | independent route | paper | detail |",
                       "|---|---|---|---|---|---|"]
-        lines.append(f"| {claim.source} | {_md_escape(claim.statement)} | {ev.verdict} | {_md_escape(ev.expected)} "
-                     f"| {_md_escape(ev.observed)} | {_md_escape(ev.detail)} |")
+        verdict = ev.verdict + (f" ({claim.severity})" if ev.verdict == ERRATUM else "")
+        detail = ev.detail + ("" if not ev.measures else " Measures: " + "; ".join(f"{n}: {v}" for n, v in ev.measures))
+        lines.append(f"| {claim.source} | {_md_escape(_quote_text(claim))} | {verdict} | {_md_escape(ev.expected)} "
+                     f"| {_md_escape(ev.observed)} | {_md_escape(detail)} |")
     lines += ["", "## Regenerated figures", ""]
     for claim, ev in results:
         for fig in ev.figures:
@@ -151,14 +178,19 @@ def _maps(say):
     from .studies.thresholds import threshold
 
     rows, images, timing = [], {}, []
+    from models.ring import parameter_set
+
     for model, motion in MAPS:
         say(f"  stability map {model} {motion} (10^4 trajectories)")
-        lin = float(threshold(model, motion).value)
-        smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100))
+        params = dict(parameter_set("printed")) if model == "ring" else None  # the paper's own ring
+        lin = float(threshold(model, motion, params).value)
+        smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100),
+                             params=params)
         name = f"map-{model}-{motion}.png"
         images[name] = render_map(smap)
         lo, hi = switch_bracket(smap)
-        rows.append({"model": model, "motion": motion, "figure": f"figures/{name}", "trajectories": smap.n_trajectories,
+        rows.append({"model": model, "motion": motion, "params": params or {}, "figure": f"figures/{name}",
+                     "trajectories": smap.n_trajectories,
                      "t_end": smap.t_end, "linear_threshold": f"{lin:.12g}",
                      "switch_at_tilt_1e-6": [f"{lo:.6g}", f"{hi:.6g}"]})
         timing.append({"model": model, "motion": motion, "trajectories": smap.n_trajectories,
@@ -244,14 +276,18 @@ def write_report(out="reports", bench: bool = True) -> None:
 
     extra = render_reference(studies["reference"]["index"], studies["reference"]["checks"])
     extra += render_retrograde(studies["retrograde"])
-    extra += ["", "## Benchmarks (issue 5)", "",
+    extra += ["", "## Benchmarks", "",
               "Speed depends on the machine, so the benchmarks are not in this file (which is byte-reproducible): "
               "`python -m verify bench`, the last stage of `make report`, writes [BENCHMARKS.md](BENCHMARKS.md) and "
               "`benchmarks.json` -- work against precision against the reference set (heyoka at double, long, quad and "
               "MPFR; scipy's DOP853, Radau and LSODA; mpmath's odefun), the energy error over 10^6 steps, sweep "
               "throughput (loop, batch, ensemble, scipy) and the JIT cost with and without heyoka's disk cache, with "
               "the machine they ran on.", ""]
-    md = render_markdown(results, cons_md + "\n" + render_studies(studies) + "\n".join(extra) + "\n", prov)
+    from .summary import build as build_summary
+
+    summary = build_summary(results, studies)
+    md = render_markdown(results, cons_md + "\n" + render_studies(studies) + "\n".join(extra) + "\n", prov,
+                         summary=summary)
     md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"
     from .figures import render
 
@@ -262,8 +298,8 @@ def write_report(out="reports", bench: bool = True) -> None:
     images.update(study_images)
     for name, data in images.items():
         write_atomic(out / "figures" / name, data)
-    results_json = {"claims": [result_record(c, e) for c, e in results], "conservation": rows, "studies": studies,
-                    "provenance": prov}
+    results_json = {"summary": summary, "claims": [result_record(c, e) for c, e in results], "conservation": rows,
+                    "studies": studies, "provenance": prov}
     write_atomic(out / "results.json", json.dumps(results_json, indent=2) + "\n")
     write_atomic(out / "REPORT.md", md)
     write_atomic(out / "report.html", render_html(md, images))

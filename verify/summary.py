@@ -88,17 +88,17 @@ def render(s: dict) -> list:
         lines += ["**Errata, most serious first** (severity: " +
                   "; ".join(f"*{k}*: {v}" for k, v in SEVERITY_WORDS.items()) + "):", "",
                   "| severity | where | the paper prints | correction |", "|---|---|---|---|"]
-        lines += [f"| {e['severity']} | [{e['source']}](#{e['id']}) | {_cell(e['quote'])} | {_cell(e['correction'])} |"
+        lines += [f"| {e['severity']} | {e['source']} | {_cell(e['quote'])} | {_cell(e['correction'])} |"
                   for e in s["errata"]]
         lines.append("")
     if s["qualified"]:
         lines += ["**Qualified captions** -- the described behaviour is reproduced only through a finite or unstated "
                   "perturbation, while the threshold the caption implies is wrong:", ""]
-        lines += [f"- [{q['source']}](#{q['id']}): {q['qualification']}" for q in s["qualified"]]
+        lines += [f"- {q['source']}: {q['qualification']}" for q in s["qualified"]]
         lines.append("")
     if s["undecided"]:
         lines += ["**Undecided captions** -- two independent measures disagree, so no verdict is given:", ""]
-        lines += [f"- [{u['source']}](#{u['id']}): " + "; ".join(u["measures"]) for u in s["undecided"]]
+        lines += [f"- {u['source']}: " + "; ".join(u["measures"]) for u in s["undecided"]]
         lines.append("")
     return lines
 

@@ -73,7 +73,7 @@ class RunData:
     omega3: tuple
     x: tuple
     y: tuple
-    energy_drift: float
+    energy_drift: float  # max |E(t) - E(0)| / |E(0)| over the run (InvariantTrace.max_rel_drift)
     outcome: str
 
 

@@ -130,7 +130,7 @@ def render_markdown(index: dict, checks: dict) -> list:
     recs = {p: [c.to_record() if isinstance(c, CaseCheck) else c for c in cs] for p, cs in checks.items()}
     lines = [
         "",
-        "## Reference trajectories (issue 5)",
+        "## Reference trajectories",
         "",
         f"`reports/reference/` holds {len(index['cases'])} cases (every model; quiet and wild motions; 1 to 100 s; the "
         "paper's figure runs that stay in their model's domain), each integrated on the derived equations at "

@@ -1,4 +1,4 @@
-"""The dissipative spin-down of the disk towards theta -> 0 (issue 4): laws, runs, fitted exponents.
+"""The dissipative spin-down of the disk towards theta -> 0: laws, runs, fitted exponents.
 
 The disk of :mod:`models.dissipative` loses energy through a couple
 ``tau = -c sin^-n(theta) omega_perp`` (``moffatt``: n = 3, ``contact-rate``: n = 2).  This study

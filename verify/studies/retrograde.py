@@ -171,7 +171,7 @@ def summarise(mechanism: str, results: dict) -> dict:
                            "last_window_turns": [_round(r["strobe_last"]), _round(r["mean_last"])],
                            "node_turn": [r["node_turn_start"], r["node_turn_end"]],
                            "node_retrograde_turn": _yes(r["node_retrograde_turn"]),
-                           "roll_reversal": _yes(r["roll_reversal"]), "energy_drift": f"{r['energy_drift']:.1e}"})
+                           "roll_reversal": _yes(r["roll_reversal"]), "energy_drift_vs_terms": f"{r['energy_drift_vs_terms']:.1e}"})
     # judged where both fell flat (theta < theta_stop) within t_end: "before the ring falls flat"
     fell = {b["c"] for b in bodies if b["body"] == "paper's ring" and b["outcome"] == "theta_stop"} & \
         {b["c"] for b in bodies if b["body"] == "flat disk" and b["outcome"] == "theta_stop"}
@@ -208,7 +208,7 @@ def summarise(mechanism: str, results: dict) -> dict:
         "control_windows_undecided": int(sum(r["windows_undecided"] for r in crows
                                              if not _nan(r["windows_undecided"]))),
         "min_points_per_nutation": round(min(resolution), 1) if resolution else None,
-        "max_energy_drift": f"{max(r['energy_drift'] for r in rows + crows):.1e}",
+        "max_energy_drift_vs_terms": f"{max(r['energy_drift_vs_terms'] for r in rows + crows):.1e}",
         "reproduces_observation": reproduces,
         "verdict": _verdict(mechanism, reproduces, ring, disk, control, ring_read, disk_read),
         "seconds": round(seconds + cseconds, 1),
@@ -330,7 +330,7 @@ def render_markdown(study: dict) -> list:
               "so the loops and the orbit have no separate time scales and there is no slow path to read. "
               "Conservative controls that turn: "
               + ", ".join(f"{m} {s['control']['turned']} of {s['control']['runs']}" for m, s in study.items()) + ".",
-              f"Energy: E + W = E(0) along every run to {max(float(s['max_energy_drift']) for s in study.values()):.0e} "
+              f"Energy: E + W = E(0) along every run to {max(float(s['max_energy_drift_vs_terms']) for s in study.values()):.0e} "
               "of the energy's scale.", ""]
     for m in study:
         lines += [f"![](figures/retrograde-{m}.png)", "", f"![](figures/retrograde-{m}-roll.png)", ""]

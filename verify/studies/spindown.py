@@ -1,4 +1,4 @@
-"""Exact steady spin-down motions (thetadot = 0) of the disk and the ring (issue 4, part 2, begun).
+"""Exact steady spin-down motions (thetadot = 0) of the disk and the ring.
 
 Two families, each fixing psidot in terms of phidot at a given theta:
 

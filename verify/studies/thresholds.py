@@ -1,4 +1,4 @@
-"""Linear stability of steady motions, exactly: the threshold spin rate (issue 4, part 1).
+"""Linear stability of steady motions, exactly: the threshold spin rate.
 
 For a steady motion (thetadot = 0, constant rates) of a body of revolution on the plane,
 phiddot and psiddot carry a factor thetadot and thetaddot is even in thetadot, so the

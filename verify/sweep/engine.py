@@ -244,7 +244,7 @@ def _reduce(spec: SweepSpec, sysm: System, index: int, grid, samples, lane_pars,
     work = y[:, 8] if sysm.n_states > 8 else 0.0
     drift = float(np.max(np.abs(energy + work - energy[0])) / np.max(scale))
     row = {"idx": index, **{f"in_{k}": v for k, v in spec.point(index).items()},
-           "outcome": "ok" if not reason else sysm.events[reason - 1], "t_stop": t_stop, "energy_drift": drift}
+           "outcome": "ok" if not reason else sysm.events[reason - 1], "t_stop": t_stop, "energy_drift_vs_terms": drift}
     th = y[:, TH]
     q = {"max_theta": th.max(), "min_theta": th.min(), "final_theta": th[-1],
          "max_theta_deviation": np.max(np.abs(th - ref))}

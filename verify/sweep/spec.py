@@ -47,7 +47,7 @@ Example (``verify/sweep/specs/disk-diameter-spin.toml`` ships with the package):
 (:func:`models.ring_dissipation.annulus_inertia`); ``w`` may then be an axis or a fixed value.
 
 Every run records ``outcome`` (``ok`` or the terminal event), ``t_stop`` (the event's time, or
-t_end) and ``energy_drift`` (max |E + W - E(0)| over the samples, relative to the largest sum of
+t_end) and ``energy_drift_vs_terms`` (max |E + W - E(0)| over the samples, relative to the largest sum of
 the magnitudes of the energy's terms; W is the work of a dissipative term, 0 otherwise).
 """
 from __future__ import annotations
@@ -74,10 +74,10 @@ SENSE_KEYS = ("orbit_start", "orbit_end", "orbit_last", "t_orbit_start", "t_orbi
               "retrograde_end", "t_retrograde", "windows", "windows_undecided", "strobe_last", "mean_last",
               "points_per_nutation", "node_turn_start", "node_turn_end", "node_retrograde_turn", "path_start",
               "path_end", "path_reversal", "roll_start", "roll_end", "roll_reversal", "t_roll_reversal")
-#: Quantities a run can record beyond outcome, t_stop and energy_drift (see verify.sweep.engine).
+#: Quantities a run can record beyond outcome, t_stop and energy_drift_vs_terms (see verify.sweep.engine).
 QUANTITIES = ("max_theta", "min_theta", "final_theta", "max_theta_deviation", "growth") + SENSE_KEYS \
     + tuple(f"final_{n}" for n in STATE_NAMES)
-ALWAYS = ("t_stop", "energy_drift")
+ALWAYS = ("t_stop", "energy_drift_vs_terms")
 GEOMETRIES = ("annulus",)
 #: The axis that sets the rate of each steady motion (sleeping: psidot is the spin, phidot = 0).
 RATE_AXIS = {"diameter-spin": "phidot", "straight-line": "psidot", "precession": "phidot", "sleeping": "psidot"}

@@ -4,7 +4,7 @@ Tables
 ------
 ``meta``   (key, value): the spec's text and sha256, the column list, the format.
 ``runs``   one row per trajectory: ``idx`` (the point's index, primary key), ``chunk``, the
-           inputs ``in_<axis>``, ``outcome``, ``t_stop``, ``energy_drift`` and the recorded
+           inputs ``in_<axis>``, ``outcome``, ``t_stop``, ``energy_drift_vs_terms`` and the recorded
            quantities.
 ``chunks`` one row per finished chunk: ``chunk`` (primary key), ``n`` rows, ``seconds``, ``worker``.
 
