@@ -51,6 +51,11 @@ def test_aliased_samples_give_no_stroboscopic_sense():
     th = 0.1 + 0.01 * np.cos(nut * T)
     c = circling(T, x, y, th)
     assert math.isnan(c.strobe.turns) and c.sign == 0
+    # for a whole path, the orbit is then the path's own circling (counter-clockwise here)
+    whole = circling(T, x, y, th, whole_path=True)
+    assert whole.agree and whole.sign == +1 and whole.strobe.turns == pytest.approx(0.57 / 0.285 * 20, rel=0.01)
+    mirrored = circling(T, x, -y, th, whole_path=True)
+    assert mirrored.agree and mirrored.sign == -1
 
 
 def test_no_nutation_reads_the_path_itself():

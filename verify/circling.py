@@ -56,11 +56,14 @@ class Sense:
     def sign(self) -> int:
         return int(np.sign(self.turns)) if self.decides else 0
 
-    def text(self) -> str:
+    def value(self) -> str:
         if not math.isfinite(self.turns):
-            return f"{self.name}: no slow path"
+            return "no slow path"
         word = {1: "counter-clockwise", -1: "clockwise", 0: "undecided"}[self.sign]
-        return f"{self.name}: {self.turns:+.2f} turns ({word})"
+        return f"{self.turns:+.2f} turns ({word})"
+
+    def text(self) -> str:
+        return f"{self.name}: {self.value()}"
 
 
 @dataclass(frozen=True)
@@ -86,7 +89,7 @@ class Circling:
 
     def measures(self) -> tuple:
         """(name, text) pairs for an Evaluation."""
-        return ((self.strobe.name, self.strobe.text()), (self.mean.name, self.mean.text()))
+        return ((self.strobe.name, self.strobe.value()), (self.mean.name, self.mean.value()))
 
 
 def theta_maxima(t: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -132,11 +135,19 @@ def running_mean(t: np.ndarray, values: np.ndarray, window: float):
     return centre, (hi - lo) / window
 
 
-def circling(t, x, y, theta, nutation_floor: float = 1e-9) -> Circling:
+def circling(t, x, y, theta, nutation_floor: float = 1e-9, whole_path: bool = False) -> Circling:
     """The circling sense of the CM path (x, y)(t) over the nutation of theta(t), two ways.
 
     ``t`` must be a fine uniform grid (several points per nutation).  ``nutation_floor``:
     a theta spread below it (rad) counts as no nutation.
+
+    ``whole_path``: when the CM circles faster than a quarter turn a nutation there is no
+    slow path for the once-per-nutation samples to resolve.  For a whole run (a figure's
+    path) the first measure is then the winding of the raw path about its own centroid --
+    how often the CM goes round the centre of everything it drew, which counts a guide
+    circle and not loops that do not enclose that centre.  Windows cut out of a decaying run
+    (the sweep engine) keep the default, undecided there: a window's centroid is not the
+    centre of an orbit.
     """
     t, x, y, theta = (np.asarray(v, dtype=float) for v in (t, x, y, theta))
     if np.ptp(theta) < nutation_floor:
@@ -154,6 +165,9 @@ def circling(t, x, y, theta, nutation_floor: float = 1e-9) -> Circling:
     strobe = winding_turns(sx, sy)
     mean = area_turns(mx, my) if period / float(np.median(np.diff(t))) >= MIN_POINTS_PER_NUTATION else math.nan
     if np.median(np.abs(np.diff(np.unwrap(np.arctan2(sy - sy.mean(), sx - sx.mean()))))) / (2 * math.pi) > RESOLVED_STEP:
+        if whole_path:  # no slow path to sample: the orbit is the path's own circling
+            return Circling(Sense("CM path winding about its centroid (no separate slow path)", winding_turns(x, y)),
+                            Sense("CM mean over a nutation, area", mean), period, len(marks))
         strobe = math.nan  # the CM circles too fast to be sampled once per nutation: no slow path there
     return Circling(Sense("CM once per nutation, winding", strobe),
                     Sense("CM mean over a nutation, area", mean), period, len(marks))

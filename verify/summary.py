@@ -93,7 +93,8 @@ def render(s: dict) -> list:
         lines.append("")
     if s["qualified"]:
         lines += ["**Qualified captions** -- the described behaviour is reproduced only through a finite or unstated "
-                  "perturbation, while the threshold the caption implies is wrong:", ""]
+                  "perturbation or one unstated choice, while what the caption implies in general (a threshold, a "
+                  "sense) is wrong or holds only for that choice:", ""]
         lines += [f"- {q['source']}: {q['qualification']}" for q in s["qualified"]]
         lines.append("")
     if s["undecided"]:

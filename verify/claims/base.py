@@ -20,8 +20,10 @@ Verdicts
     what the paper derives from it is right), ``rounding`` (a last printed digit).
 ``qualified``
     a caption's described behaviour is reproduced, but only because of an unstated or finite
-    perturbation, while the threshold the caption implies is wrong; the evaluation states the
-    exact threshold and the perturbation that produces the figure.
+    perturbation (or one unstated choice, such as a handedness), while what the caption
+    implies in general -- a threshold, a sense -- is wrong or holds only for that choice; the
+    evaluation states the exact threshold or the convention-free statement, and the
+    perturbation or choice that produces the figure.
 ``not-checkable``
     nothing to decide (a definition, a diagram), or -- for a simulation -- the two
     independent measures of a qualitative statement disagree; both numbers are given.
