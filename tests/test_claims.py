@@ -97,3 +97,11 @@ def test_a_misprinted_number_is_caught():
 
     assert disk._fig6_check("cm-at-rest", ("-626.104", "626.073"))().verdict == CONFIRMED
     assert disk._fig6_check("cm-at-rest", ("-626.104", "626.074"))().verdict == ERRATUM
+
+
+def test_citation_check_counts_printed_components():
+    """Negative control for the Fig. 19 citation check: it reads the paper, so a 3-vector equation
+    (Eq. 18, Eq. 81) counts 3 and the scalar Eq. 82 counts 1."""
+    from verify.claims.simulations import _printed_components
+
+    assert (_printed_components(18), _printed_components(81), _printed_components(82)) == (3, 3, 1)
