@@ -76,7 +76,7 @@ def scalar_runs(name: str, motion: str, smap: maps.StabilityMap, with_conditioni
             with mpmath.workdps(40):
                 th0 = mpmath.mpf(state["theta"])
                 state["theta"] = repr(float(th0 + mpmath.mpf(float(tilt))))
-            sol = solve(fast, smap.t_end, state, t_eval=grid[1:])
+            sol = solve(fast, smap.t_end, state, t_eval=grid)
             dev = np.abs(np.asarray(sol["theta"], dtype=float) - float(th0))
             beyond = np.nonzero(dev >= smap.cap)[0]
             out["deviation"][i, j] = dev.max()

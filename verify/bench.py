@@ -309,7 +309,7 @@ def energy_growth(quick: bool, progress) -> dict:
         state = dict(STANDARD_STATES["disk"], theta=f"{1.2 + 0.01 * k:.2f}")
         progress(f"  energy: start {k + 1}/{n_starts}, {T:g} s")
         for label, ha in (("suite", False), ("suite_high_accuracy", True)):
-            sol = solve("disk", repr(T), state, t_eval=grid, high_accuracy=ha)
+            sol = solve("disk", repr(T), state, t_eval=["0"] + grid, high_accuracy=ha)  # E(0) first
             e = np.array([float(v) for v in sol.invariants["energy"].values])
             errors[label].append(np.abs(e[1:] - e[0]) / abs(e[0]))
             steps.append(sol.steps)

@@ -15,11 +15,40 @@ only through x', y'), so the run is cut into fixed segments and between segments
 are moved into offsets kept outside the integrator: phi and psi by whole turns (exact multiples of the precision's
 2 pi, so sin and cos of phi are unchanged), x and y entirely.  The returned phi, psi,
 x, y are the offsets plus the reduced values: continuous, never reduced modulo 2 pi.
+
+Failures
+--------
+A run either ends ``ok`` (at t_end) or at a terminal event, with every state it returns
+inside the model's domain and, where the model has a contact and events are on, with a
+positive normal force; or :class:`IntegrationError` is raised with ``outcome`` one of
+:data:`FAILURES`.  (With ``events=False`` nothing stops the run at the domain's ends or at N = 0,
+by request -- the claims read how far theta goes past pi/2 that way --, and a run whose theta
+left the domain is returned with ``outcome = "outside_domain"``, ``status = 2``: never ``ok``.)
+
+* ``failed:non_finite`` -- heyoka stopped on a non-finite state (``taylor_outcome.err_nf_state``),
+  or a returned state is not finite;
+* ``failed:event_detection`` -- heyoka warned that its event detection failed (root finding gave
+  up, or was skipped), or a state left the domain, or the normal force fell to N <= 0, without
+  the terminal event that should have stopped the run there (heyoka's warnings are collected by
+  :mod:`verify.heyoka_log`, never printed);
+* ``failed:step_size_collapse`` -- a segment of 2 pi radians of the fastest initial rate took
+  more than 2 pi :data:`COLLAPSE_FACTOR` steps (2e5; a segment typically takes ~200): the steps
+  averaged less than 2^-15 of the step cap (:func:`max_step`), a thousandth of the typical step
+  (omega h ~ 0.03), i.e. the motion's rates grew a thousandfold over the fastest initial one (the
+  largest growth in the suite's runs is ~25-fold, the standard disk dipping to theta = 0.25) -- a
+  singularity of the equations, which a bounded-energy rolling body meets only at its domain's
+  ends.  heyoka has no outcome for this (its step size shrinks without bound and the run never
+  returns), so each segment is given this step budget.
+
+The error carries ``t`` (where the failure was seen), ``state`` and ``trajectory``: the run up
+to its last valid output, with that outcome and ``status = -1``.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+import numbers
+import time
+from dataclasses import dataclass, field, replace
 
 import heyoka as hy
 import mpmath
@@ -29,7 +58,9 @@ from models import get_model
 from models.base import Model
 from models.symbols import STATE_NAMES
 
+from . import heyoka_log
 from . import invariants as inv
+from . import validation
 from .compile import compile_model
 from .invariants import InvariantTrace
 from .precision import Precision, parse_precision
@@ -37,9 +68,26 @@ from .precision import Precision, parse_precision
 _CYCLIC = (1, 2, 6, 7)  # phi, psi, x, y
 _ANGLES = (1, 2)
 
+#: Outcomes of a failed run (``IntegrationError.outcome``; the module docstring says when).
+FAILURES = ("failed:non_finite", "failed:event_detection", "failed:step_size_collapse")
+#: A segment (2 pi radians of the fastest initial rate) may take 2 pi COLLAPSE_FACTOR steps.
+COLLAPSE_FACTOR = 2 ** 15
+#: The progress hook is called at most this often (seconds of wall time).
+PROGRESS_SECONDS = 0.5
+#: The default number of output points when neither t_eval nor n_eval is given.
+N_EVAL_DEFAULT = 101
+
 
 class IntegrationError(RuntimeError):
-    """The integrator failed (non-finite state, step limit): no partial result is returned."""
+    """The integration failed; ``outcome`` says how (one of :data:`FAILURES`).
+
+    ``t`` and ``state`` are where the failure was seen; ``trajectory`` is the run up to its last
+    valid output (a :class:`Trajectory` with that outcome and ``status = -1``), or None.
+    """
+
+    def __init__(self, message: str, outcome: str = "failed", t=None, state=None, trajectory=None):
+        super().__init__(message)
+        self.outcome, self.t, self.state, self.trajectory = outcome, t, state, trajectory
 
 
 @dataclass(frozen=True)
@@ -53,9 +101,13 @@ class Trajectory:
     y : ndarray, shape (8, n)
         States, rows in the order of ``state_names``; phi, psi continuous.
     status : int
-        0 when ``t_end`` was reached, 1 when a terminal event stopped the run.
+        0 when ``t_end`` was reached, 1 when a terminal event stopped the run, 2 when a run
+        without events reached t_end after its theta left the domain (-1 only on the partial
+        record an :class:`IntegrationError` carries).
     outcome : str
-        ``"ok"`` or ``"event:<name>"`` (``lies_flat``, ``rim_switch``, ``contact_lost``, ...).
+        ``"ok"`` or ``"event:<name>"`` (``lies_flat``, ``rim_switch``, ``contact_lost``, ...);
+        ``"outside_domain"`` (status 2, ``events=False`` only); ``"failed:<reason>"`` only on an
+        :class:`IntegrationError`'s partial record.
     steps : int
         Taylor steps taken.
     invariants : dict of name -> InvariantTrace
@@ -96,59 +148,20 @@ class Trajectory:
 
 
 def resolve_parameters(model: Model, values, precision: Precision) -> dict:
-    """Every parameter of the model at ``precision``: defaults overridden by ``values``."""
-    values = dict(values or {})
-    unknown = sorted(set(values) - set(model.parameter_names))
-    if unknown:
-        raise ValueError(
-            f"unknown parameter {unknown[0]!r} for model {model.name!r}; allowed: {', '.join(model.parameter_names)}"
-        )
-    out = {}
-    for p in model.parameters:
-        raw = values.get(p.name, p.default)
-        try:
-            val = precision.number(raw)
-        except (ValueError, TypeError) as err:
-            raise ValueError(f"parameter {p.name}={raw!r}: {err}") from None
-        p.check(val, shown=raw)
-        out[p.name] = val
-    model.check_relations(out)
-    return out
+    """Every parameter of the model at ``precision``: defaults overridden by ``values``
+    (:func:`verify.validation.parameters`)."""
+    return validation.parameters(model, values, precision)
 
 
 def resolve_state(model: Model, values, precision: Precision) -> np.ndarray:
-    """The eight-component initial state; unset components are 0."""
-    values = dict(values or {})
-    unknown = sorted(set(values) - set(STATE_NAMES))
-    if unknown:
-        raise ValueError(f"unknown state variable {unknown[0]!r}; allowed: {', '.join(STATE_NAMES)}")
-    state = []
-    for name in STATE_NAMES:
-        raw = values.get(name, 0)
-        try:
-            state.append(precision.number(raw))
-        except (ValueError, TypeError) as err:
-            raise ValueError(f"state {name}={raw!r}: {err}") from None
-    dom = model.domain
-    th = state[0]
-    if not dom.contains(th):
-        raise ValueError(
-            f"state theta={values.get('theta', 0)} is outside the domain of {model.name!r}: "
-            f"{float(dom.theta_min):.17g} < theta < {float(dom.theta_max):.17g} "
-            f"(at the lower end: {dom.below}; at the upper end: {dom.above})"
-        )
-    return precision.array(state)
-
-
-def _check_constraints(model: Model, state, params, precision: Precision) -> None:
-    from models.symbols import STATE as SYMS
-
-    for name, expr, text in model.constraints:
-        subs = {s: precision.to_mpf(v) for s, v in zip(SYMS, state)}
-        with mpmath.workprec(precision.bits + 16):
-            val = expr.subs(subs)
-        if val != 0:
-            raise ValueError(f"state violates the constraint {name} = 0 ({text}); it is {float(val):g}")
+    """The eight-component initial state (a mapping, or eight values in state order); unset
+    components are 0; theta must lie in the model's domain (:mod:`verify.validation`)."""
+    y0 = validation.state(model, values, precision)
+    shown = [dict(values)] if isinstance(values, dict) else None
+    problem = validation.first_problem(model, y0[:, None], None, shown)
+    if problem is not None and problem[1] == "outside_domain":
+        raise validation.InvalidStart(problem[2], problem[1])
+    return y0
 
 
 def _parse_positive(name: str, value, precision: Precision):
@@ -158,6 +171,28 @@ def _parse_positive(name: str, value, precision: Precision):
         raise ValueError(f"{name}={value!r}: {err}") from None
     if not float(v) > 0:
         raise ValueError(f"{name}={value} must be a positive finite number")
+    return v
+
+
+def _parse_tolerance(value, precision: Precision):
+    """The Taylor tolerance: at least the precision's epsilon and below 1.
+
+    Below epsilon nothing is gained (every step rounds at eps) while heyoka's order,
+    ~ -ln(tol)/2 + 1, and with it the compile time grow: tol = 1e-300 in double asks for
+    order ~346, which compiles for a quarter of an hour.
+    """
+    try:
+        exact = mpmath.mpf(str(value).strip()) if isinstance(value, str) else mpmath.mpf(value)
+    except (ValueError, TypeError):
+        exact = None
+    eps = precision.eps
+    allowed = (f"allowed: {eps:.3g} <= tol < 1 (the {precision.name} epsilon 2^{1 - precision.bits} and up; "
+               "for a smaller tolerance choose more bits: quad, or mp:BITS)")
+    if exact is not None and mpmath.isfinite(exact) and 0 < exact < eps:
+        raise ValueError(f"tol={value!r} is below the {precision.name} epsilon: {allowed}")
+    v = _parse_positive("tol", value, precision)
+    if not float(v) < 1:
+        raise ValueError(f"tol={value!r} is not below 1; {allowed}")
     return v
 
 
@@ -188,20 +223,81 @@ class _Offsets:
         return row
 
 
-def _propagate(ta, grid, t_end, h_max, prec: Precision):
+class _Clock:
+    """Calls a progress hook at most every PROGRESS_SECONDS of wall time.
+
+    It is asked after every segment (cheap: a clock read).  Where one segment takes longer than
+    PROGRESS_SECONDS (slow precisions: MPFR at hundreds of bits), it is also asked after every
+    step through heyoka's step callback, whose cost (~1 us) is then negligible beside the step's.
+    Neither changes a step: the callback only reads the time.
+    """
+
+    def __init__(self, hook):
+        self.hook = hook
+        self.last = self.mark = time.monotonic()
+        self.per_step = False
+        self.steps_before = 0  # steps of the finished segments
+
+    def check(self, t, steps: int) -> None:
+        now = time.monotonic()
+        if now - self.last >= PROGRESS_SECONDS:
+            self.last = now
+            self.hook(float(t), int(steps))
+
+    def segment_done(self, t, steps: int) -> None:
+        now = time.monotonic()
+        if now - self.mark > PROGRESS_SECONDS:
+            self.per_step = True
+        self.mark = now
+        self.steps_before = steps
+        self.check(t, steps)
+
+    def callback(self):
+        if not self.per_step:
+            return None
+        base = self.steps_before
+
+        class _Step:
+            n = 0
+
+            def __call__(inner, ta):  # noqa: N805 - heyoka calls it with the integrator
+                inner.n += 1
+                self.check(ta.time, base + inner.n)
+                return True
+
+        return _Step()
+
+
+@dataclass
+class _Run:
+    outcome: object
+    steps: int
+    times: list
+    states: list
+    collapsed: bool = False
+    last_h: object = None
+
+
+def _propagate(ta, grid, t_end, h_max, prec: Precision, progress=None) -> _Run:
     """Integrate over fixed segments of 2 pi h_max, rebasing between them.
 
-    Each segment is one ``propagate_grid`` call (heyoka's C++ loop, dense output at the
-    grid points inside it), so the Python cost is per segment, not per step; a segment
-    holds at least 2 pi steps (h <= h_max) and typically hundreds.  Segment ends depend
-    on t_end and the initial rates only, so the steps, and the bits of the result, do
-    not depend on the output grid.  Returns (outcome, steps, times, states).
+    A segment is one ``propagate_grid`` call (heyoka's C++ loop, dense output at the grid
+    points inside it), so the Python cost is per segment, not per step; a segment holds at
+    least 2 pi steps (h <= h_max) and typically hundreds.  Segment ends depend on t_end and
+    the initial rates only, so the steps, and the bits of the result, do not depend on the
+    output grid.  A segment may take at most 2 pi COLLAPSE_FACTOR steps (``max_steps``; beyond
+    that the step size has collapsed, see the module docstring).  The ``progress`` hook is
+    called between segments, or from heyoka's step callback where segments are slow
+    (:class:`_Clock`); segments are never split for it (a new ``propagate_grid`` call from
+    inside a segment would start with a tiny step to the double-rounded time and change the
+    bits), so the result is the same with or without it (tests/test_api.py).
     """
     offsets = _Offsets(prec)
     seg = prec.number(2 * math.pi) * h_max
-    times, states, steps, k = [grid[0]], [np.array(ta.state)], 0, 1
-    j = 1  # next output grid index
-    outcome = hy.taylor_outcome.time_limit
+    budget = int(2 * math.pi * COLLAPSE_FACTOR)
+    clock = _Clock(progress) if progress is not None else None
+    run = _Run(hy.taylor_outcome.time_limit, 0, [grid[0]], [np.array(ta.state)])
+    j, k = 1, 1  # next output grid index, segment number
     while True:
         end = prec.number(k) * seg
         if not end < t_end:
@@ -210,22 +306,35 @@ def _propagate(ta, grid, t_end, h_max, prec: Precision):
         while j < len(grid) and grid[j] < end:
             inside.append(grid[j])
             j += 1
-        res = ta.propagate_grid(prec.array([ta.time] + inside + [end]), max_delta_t=h_max)
-        outcome, steps = res[0], steps + int(res[3])
+        kwargs = {"max_delta_t": h_max, "max_steps": budget}
+        if clock is not None and clock.per_step:
+            kwargs["callback"] = clock.callback()
+        res = ta.propagate_grid(prec.array([ta.time] + inside + [end]), **kwargs)
+        outcome, run.steps = res[0], run.steps + int(res[3])
         rows = res[-1][1:]
         for t, row in zip(inside, rows):
-            times.append(t)
-            states.append(offsets.restore(row))
-        if outcome != hy.taylor_outcome.time_limit:  # an event (or a failure) inside the segment
-            times.append(ta.time)
-            states.append(offsets.restore(ta.state))
-            return outcome, steps, times, states
+            run.times.append(t)
+            run.states.append(offsets.restore(row))
+        finished = len(rows) == len(inside) + 1  # (heyoka says step_limit when the budget ends on t_end)
+        if outcome == hy.taylor_outcome.step_limit and not finished:  # the step size collapsed
+            run.outcome, run.collapsed, run.last_h = outcome, True, ta.last_h
+            run.times.append(ta.time)
+            run.states.append(offsets.restore(ta.state))
+            return run
+        if outcome not in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit):  # an event or a failure
+            run.outcome = outcome
+            run.times.append(ta.time)
+            run.states.append(offsets.restore(ta.state))
+            return run
+        run.outcome = hy.taylor_outcome.time_limit
         if j < len(grid) and not grid[j] > end:  # the segment end is itself an output point
-            times.append(end)
-            states.append(offsets.restore(ta.state))
+            run.times.append(end)
+            run.states.append(offsets.restore(ta.state))
             j += 1
+        if clock is not None:
+            clock.segment_done(ta.time, run.steps)
         if not end < t_end:
-            return outcome, steps, times, states
+            return run
         offsets.rebase(ta.state)
         k += 1
 
@@ -240,9 +349,10 @@ def solve(
     equations: str = "derived",
     tol=None,
     t_eval=None,
-    n_eval: int = 101,
+    n_eval=None,
     events: bool = True,
     high_accuracy: bool = False,
+    progress=None,
 ) -> Trajectory:
     """Integrate ``model`` from ``state`` at time 0 to ``t_end``.
 
@@ -252,63 +362,184 @@ def solve(
         A model name (``python -m verify models`` lists them) or a Model object.
     t_end : number or decimal string
         Final time in seconds, > 0.
-    state, params : dict, optional
-        Initial values by name (unset state components are 0; unset parameters take the
-        model's defaults).  Strings are read at ``precision``.
+    state : mapping or sequence, optional
+        Initial values by name (unset components are 0), or all eight in the model's state
+        order ``theta, phi, psi, thetadot, phidot, psidot, x, y`` (a list, tuple or 1-D array).
+        Strings are read at ``precision``.
+    params : mapping, optional
+        Parameters by name; unset ones take the model's defaults.
     precision : {"double", "long", "quad", "mp:BITS"}
+        BITS at least :data:`verify.precision.MIN_MPFR_BITS` (53).
     equations : {"derived", "paper"}
         The derived equations or the paper's as printed (ignored for a Model object).
     tol : number, optional
         Taylor tolerance; defaults to the precision's epsilon.
     t_eval : sequence, optional
-        Output times in [0, t_end], increasing; default ``n_eval`` equally spaced points.
+        Output times in [0, t_end], strictly increasing; exactly these are returned (plus the
+        time of a terminal event that stops the run before the last of them).
+    n_eval : int, optional
+        Else ``n_eval`` >= 2 equally spaced output times from 0 to t_end (default 101).  Give
+        ``t_eval`` or ``n_eval``, not both.
     events : bool
-        Stop at the domain's ends and at loss of contact (default True).
+        Stop at the domain's ends and at loss of contact (default True).  Without events
+        neither is enforced; a run whose theta leaves the domain then ends ``outside_domain``.
     high_accuracy : bool
         heyoka's high-accuracy mode (compensated summation of the Taylor series), for long runs
         where the energy error should follow Brouwer's law (``python -m verify bench`` measures it).
+    progress : callable(t, steps), optional
+        Called during the integration at most every 0.5 s of wall time with the time reached
+        (a float, seconds) and the Taylor steps taken so far; not necessarily at the end.  It runs
+        in the integrating thread; an exception it raises ends the run.  None (the default)
+        costs nothing.
 
     Raises
     ------
     ValueError
         For bad input (unknown names, non-finite values, out-of-range parameters, states
-        outside the domain, non-positive tolerance, unknown precision).
+        outside the domain or with N <= 0 -- :class:`verify.validation.InvalidStart` --,
+        non-positive tolerance, bad grids, unknown precision).
     IntegrationError
-        If the integrator fails.
+        If the integration fails; ``outcome`` is one of :data:`FAILURES` (module docstring).
     """
     prec = parse_precision(precision)
     if isinstance(model, str):
         model = get_model(model, equations)
-    pars = resolve_parameters(model, params, prec)
-    y0 = resolve_state(model, state, prec)
-    _check_constraints(model, y0, pars, prec)
+    elif not isinstance(model, Model):
+        raise ValueError(f"model={model!r}: allowed: a model name (python -m verify models) or a models.Model")
     t_end = _parse_positive("t_end", t_end, prec)
-    tol_value = prec.zero() if tol is None else _parse_positive("tol", tol, prec)
-    grid = _grid(t_end, t_eval, n_eval, prec)
-
+    tol_value = prec.zero() if tol is None else _parse_tolerance(tol, prec)
+    grid, with_start = _grid(t_end, t_eval, n_eval, prec)
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress={progress!r} is not callable; allowed: None or a function progress(t, steps)")
+    y0, pars = validation.validate(model, state, params, prec)  # compiles the model only to check N
     compiled = compile_model(model, prec)
-    values0, normal0 = inv.evaluate(compiled, y0[:, None].copy(), pars)
-    if normal0 is not None and not float(normal0[0]) > 0:
-        raise ValueError(
-            f"the initial state of {model.name!r} has normal force N/(Mg) = {float(normal0[0]):.6g} <= 0: "
-            "the body would leave the plane; allowed: states with N > 0"
-        )
 
     ta = hy.taylor_adaptive(
         list(compiled.system), y0, pars=compiled.system_pars(prec.array(pars.values())), tol=tol_value,
         t_events=compiled.t_events() if events else [], high_accuracy=high_accuracy, **prec.integrator_kwargs(),
     )
-    outcome, steps, times, states = _propagate(ta, grid, t_end, max_step(y0, pars, prec), prec)
-    status, label, message, t_events = _interpret(outcome, compiled, ta)
-    t = prec.array(times)
-    y = np.ascontiguousarray(np.array(states).T)
+    with heyoka_log.collect() as messages:
+        run = _propagate(ta, grid, t_end, max_step(y0, pars, prec), prec, progress)
+    t = prec.array(run.times)
+    y = np.ascontiguousarray(np.array(run.states).T)
+    fail = _failure(model, compiled, run, t, y, pars, events, messages)
+    if fail is not None:
+        label, good, message = fail
+        partial = _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, run.steps, ta.tol)
+        raise IntegrationError(message, label, ta.time, list(ta.state), partial)
+    status, label, message, t_events = _interpret(run.outcome, compiled, ta)
+    if not events:
+        status, label, message = _unstopped(model, t, y, status, label, message)
 
     values, normal = inv.evaluate(compiled, y, pars)
     traces = inv.traces(compiled, values, y, pars)
+    if not with_start:  # t = 0 was integrated from, not asked for
+        t, y = t[1:], np.ascontiguousarray(y[:, 1:])
+        normal = None if normal is None else normal[1:]
+        traces = {n: replace(tr, values=tr.values[1:], initial_value=tr.values[0]) for n, tr in traces.items()}
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
-        status=status, message=message, outcome=label, t_events=t_events, steps=steps, tol=ta.tol,
+        status=status, message=message, outcome=label, t_events=t_events, steps=run.steps, tol=ta.tol,
         invariants=traces, normal_force=normal,
+    )
+
+
+def _failure(model: Model, compiled, run: _Run, t, y, pars, events: bool, messages):
+    """(outcome, number of valid leading outputs, message) of a failed run, or None.
+
+    The guard of the module docstring: heyoka's own failures first, then every returned state
+    against the domain and (events on) the normal force.  At a terminal event's own output the
+    event's function is ~0 with either sign, so that one condition is not applied there.
+    """
+    name = model.name
+    finite = np.array([all(math.isfinite(float(v)) for v in col) for col in y.T])
+    if run.outcome == hy.taylor_outcome.err_nf_state or not finite.all():
+        k = int(np.argmin(finite)) if not finite.all() else len(finite) - 1
+        return ("failed:non_finite", k, f"the integration of {name!r} failed at t = {float(t[k]):.9g}: heyoka "
+                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = "
+                f"{float(t[max(k - 1, 0)]):.9g}")
+    if run.collapsed:
+        k = len(t) - 1
+        return ("failed:step_size_collapse", k, f"the integration of {name!r} failed at t = {float(t[k]):.9g}: the "
+                f"step size collapsed (a segment of 2 pi / the fastest initial rate took more than "
+                f"{int(2 * math.pi * COLLAPSE_FACTOR)} steps; the last was {float(run.last_h):.3g} s) -- the motion "
+                f"runs into a singularity of the equations (state {_state_text(y[:, k])})")
+    ev = _event_name(run.outcome, compiled)
+    dom = model.domain
+    lo, hi = float(dom.theta_min), float(dom.theta_max)
+    th = np.array([float(v) for v in y[0]])
+    inside = (lo < th) & (th < hi)
+    if ev in (dom.below, dom.above):
+        inside[-1] = True
+    detection = [m.text for m in messages if m.event_detection or m.level in ("error", "critical")]
+    normal = validation.normal_force(compiled, y, pars) if events else None
+    positive = np.ones(len(th), bool) if normal is None else np.array([float(v) > 0 for v in normal])
+    if ev == "contact_lost":
+        positive[-1] = True
+    if not inside.all() and events:
+        k = int(np.argmin(inside))
+        why = f"without its terminal event ({dom.below if th[k] <= lo else dom.above}): heyoka's event detection failed"
+        if detection:
+            why += f" (heyoka: {detection[0]})"
+        return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} theta = "
+                f"{th[k]:.9g} is outside its domain {lo:.9g} < theta < {hi:.9g}, {why}; the run is not reliable from there")
+    if not positive.all():
+        k = int(np.argmin(positive))
+        extra = f" (heyoka: {detection[0]})" if detection else ""
+        return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} the normal "
+                f"force N/(Mg) = {float(normal[k]):.6g} <= 0 without the terminal event contact_lost: heyoka's event "
+                f"detection failed{extra}; the run is not reliable from there")
+    if detection:
+        return ("failed:event_detection", len(t) - 1, f"the integration of {name!r} failed: heyoka's event detection "
+                f"failed during the run ({detection[0]}); an event may have been missed")
+    return None
+
+
+def _unstopped(model: Model, t, y, status, label, message):
+    """events=False: a run whose theta left the domain is returned, labelled ``outside_domain``."""
+    dom = model.domain
+    lo, hi = float(dom.theta_min), float(dom.theta_max)
+    th = np.array([float(v) for v in y[0]])
+    outside = np.flatnonzero(~((lo < th) & (th < hi)))
+    if not len(outside):
+        return status, label, message
+    k = int(outside[0])
+    return 2, "outside_domain", (f"theta left the domain {lo:.9g} < theta < {hi:.9g} at t = {float(t[k]):.9g} "
+                                 f"(theta = {th[k]:.9g}) and the run went on past it, as events=False asks; {message}")
+
+
+def _event_name(outcome, compiled):
+    code = int(outcome)
+    names = [name for name, _, _ in compiled.events]
+    if outcome != hy.taylor_outcome.time_limit and -len(names) <= code < 0:
+        return names[-code - 1]
+    return None
+
+
+def _first_bad(col) -> str:
+    for name, v in zip(STATE_NAMES, col):
+        if not math.isfinite(float(v)):
+            return f"{name} = {v}"
+    return "?"
+
+
+def _state_text(col) -> str:
+    return ", ".join(f"{n} = {float(v):.6g}" for n, v in zip(STATE_NAMES, col))
+
+
+def _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, steps, tol):
+    """The run up to its last valid output, as a Trajectory with the failure's outcome (or None)."""
+    keep = max(int(good), 1)
+    t, y = t[:keep], np.ascontiguousarray(y[:, :keep])
+    try:
+        values, normal = inv.evaluate(compiled, y, pars)
+        traces = inv.traces(compiled, values, y, pars)
+    except Exception:  # noqa: BLE001 - a best-effort record of a failed run
+        return None
+    return Trajectory(
+        model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
+        status=-1, message=message, outcome=label, t_events={}, steps=steps, tol=tol, invariants=traces,
+        normal_force=normal,
     )
 
 
@@ -328,22 +559,48 @@ def max_step(y0, pars: dict, prec: Precision):
     return prec.number(1) / prec.number(max(rates))
 
 
-def _grid(t_end, t_eval, n_eval, prec: Precision) -> np.ndarray:
+def _grid(t_end, t_eval, n_eval, prec: Precision):
+    """(integration grid from t = 0, whether t = 0 is an output) for ``t_eval`` or ``n_eval``."""
+    if t_eval is not None and n_eval is not None:
+        raise ValueError(f"t_eval and n_eval={n_eval!r} are both given; allowed: one of them (t_eval: the output "
+                         "times; n_eval: that many equally spaced ones)")
     if t_eval is None:
-        if int(n_eval) < 2:
-            raise ValueError(f"n_eval={n_eval} must be at least 2")
+        n_eval = N_EVAL_DEFAULT if n_eval is None else n_eval
+        if isinstance(n_eval, bool) or not isinstance(n_eval, numbers.Integral):
+            raise ValueError(f"n_eval={n_eval!r} is not an integer; allowed: an integer >= 2 (the start and t_end)")
+        if n_eval < 2:
+            raise ValueError(f"n_eval={n_eval} must be at least 2 (the start and t_end)")
         n = int(n_eval) - 1
-        pts = [t_end * prec.number(i) / prec.number(n) for i in range(n)] + [t_end]
-        return prec.array([prec.zero()] + pts[1:])
-    pts = [prec.number(v) if not isinstance(v, type(t_end)) else v for v in t_eval]
+        pts = [prec.zero()] + [t_end * prec.number(i) / prec.number(n) for i in range(1, n)] + [t_end]
+        for i, (a, b) in enumerate(zip(pts, pts[1:])):
+            if not b > a:
+                raise ValueError(f"n_eval={n_eval}: the grid k t_end / {n} is not strictly increasing in {prec.name} "
+                                 f"(t_{i} = {a}, t_{i + 1} = {b}); allowed: fewer points, a longer t_end or more bits")
+        return prec.array(pts), True
+    if isinstance(t_eval, (str, bytes)) or not hasattr(t_eval, "__iter__"):
+        raise ValueError(f"t_eval={t_eval!r}: allowed: a sequence of times in [0, t_end], strictly increasing")
+    pts = []
+    for v in t_eval:
+        try:
+            p = v if isinstance(v, type(t_end)) else prec.number(v)
+        except (ValueError, TypeError) as err:
+            raise ValueError(f"t_eval value {v!r}: {err}") from None
+        if not math.isfinite(float(p)):
+            raise ValueError(f"t_eval value {v!r} is not a finite number")
+        pts.append(p)
+    if not pts:
+        raise ValueError("t_eval is empty; allowed: one or more times in [0, t_end], strictly increasing")
     for a, b in zip(pts, pts[1:]):
         if not b > a:
             raise ValueError(f"t_eval must be strictly increasing; {b} follows {a}")
-    if pts and (pts[0] < 0 or pts[-1] > t_end):
-        raise ValueError(f"t_eval must lie in [0, t_end={t_end}]")
-    if not pts or pts[0] > 0:
+    if pts[0] < 0 or pts[-1] > t_end:
+        raise ValueError(f"t_eval must lie in [0, t_end={t_end}]; it runs from {pts[0]} to {pts[-1]}")
+    with_start = not pts[0] > 0
+    if with_start:
+        pts[0] = prec.zero()
+    else:
         pts = [prec.zero()] + pts
-    return prec.array(pts)
+    return prec.array(pts), with_start
 
 
 def _interpret(outcome, compiled, ta):
@@ -356,5 +613,5 @@ def _interpret(outcome, compiled, ta):
         return 1, f"event:{name}", f"stopped by the terminal event {name} at t = {ta.time}", {name: ta.time}
     raise IntegrationError(
         f"the integration of {compiled.model.name!r} failed at t = {ta.time} with outcome {outcome} "
-        f"(state {list(ta.state)})"
+        f"(state {list(ta.state)})", "failed:" + str(outcome).rsplit(".", 1)[-1], ta.time, list(ta.state)
     )

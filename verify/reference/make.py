@@ -50,7 +50,7 @@ def run_case(name: str, precision: str) -> Run:
     """Integrate case ``name`` at ``precision`` on its grid (derived equations); raise unless it reaches t_end."""
     c = case(name)
     p = parse_precision(precision)
-    sol = solve(c.model, c.t_end, c.state, c.params, precision=p, t_eval=c.grid()[1:])
+    sol = solve(c.model, c.t_end, c.state, c.params, precision=p, t_eval=c.grid())
     if sol.outcome != "ok" or len(sol.t) != c.intervals + 1:
         raise RuntimeError(f"reference case {name} at {precision}: {sol.outcome} at t = {sol.t[-1]} "
                            f"({len(sol.t)} of {c.intervals + 1} grid points); a reference run must reach t_end")

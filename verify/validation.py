@@ -1,0 +1,301 @@
+"""One validation path for the start of a run, whichever way it arrives.
+
+``solve`` (and through it the reference cases, the studies and the command line) and the sweeps
+(their fixed values, their axis values, every point of their grid) check a start by the
+functions of this module, so the same start is accepted or refused everywhere, with the same
+words:
+
+* :func:`parameters` -- known names, finite numbers, each in its physical range
+  (``models.base.Parameter.check``), the relations between them (``Model.check_relations``);
+* :func:`state` -- a mapping of state names, or a full-length sequence in the model's state
+  order (``theta, phi, psi, thetadot, phidot, psidot, x, y``), each a finite number;
+* :func:`start_problems` -- the start as a whole, column by column: finite, theta inside the
+  model's domain (the open interval whose ends are its terminal events), the model's
+  constraints (the effective Lagrangian's psidot = phidot), and a positive normal force
+  N/(Mg) > 0 where the model has a contact (N <= 0: the body would leave the plane at t = 0, so
+  a run would stop there at ``contact_lost`` with no dynamics in it).
+
+Every refusal is an :class:`InvalidStart` (a ``ValueError``) whose message names the value and
+what is allowed, and whose ``reason`` is one of :data:`REASONS`.
+"""
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from functools import lru_cache
+
+import heyoka as hy
+import mpmath
+import numpy as np
+import sympy as sp
+
+from models.base import Model
+from models.symbols import STATE, STATE_NAMES
+
+from .precision import Precision
+
+#: Why a start is refused (``InvalidStart.reason``).
+REASONS = ("unknown_name", "not_a_number", "non_finite", "parameter_range", "parameter_relation", "shape",
+           "outside_domain", "constraint", "normal_force")
+
+STATE_ORDER = ", ".join(STATE_NAMES)
+
+
+class InvalidStart(ValueError):
+    """A start (state or parameters) that the model cannot be integrated from.
+
+    ``reason`` is one of :data:`REASONS`; the message names the value and what is allowed.
+    """
+
+    def __init__(self, message: str, reason: str):
+        super().__init__(message)
+        self.reason = reason
+
+
+# --- parameters ------------------------------------------------------------------------------------
+
+def parameters(model: Model, values, precision: Precision) -> dict:
+    """Every parameter of the model at ``precision``: defaults overridden by ``values`` (a mapping)."""
+    if values is None:
+        values = {}
+    if not isinstance(values, Mapping):
+        raise InvalidStart(f"params={values!r} is a {type(values).__name__}; allowed: a mapping of parameter names "
+                           f"({', '.join(model.parameter_names)}) to numbers or decimal strings", "shape")
+    values = dict(values)
+    unknown = sorted(set(values) - set(model.parameter_names), key=str)
+    if unknown:
+        raise InvalidStart(f"unknown parameter {unknown[0]!r} for model {model.name!r}; allowed: "
+                           f"{', '.join(model.parameter_names)}", "unknown_name")
+    out = {}
+    for p in model.parameters:
+        raw = values.get(p.name, p.default)
+        try:
+            val = precision.number(raw)
+        except (ValueError, TypeError) as err:
+            reason = "non_finite" if "finite" in str(err) else "not_a_number"
+            raise InvalidStart(f"parameter {p.name}={raw!r}: {err}", reason) from None
+        try:
+            p.check(val, shown=raw)
+        except ValueError as err:
+            raise InvalidStart(str(err), "parameter_range") from None
+        out[p.name] = val
+    try:
+        model.check_relations(out)
+    except ValueError as err:
+        raise InvalidStart(str(err), "parameter_relation") from None
+    return out
+
+
+def check_parameter_value(model: Model, name: str, value, shown=None) -> None:
+    """One parameter value against its range alone (a sweep's fixed value or an axis end)."""
+    try:
+        model.parameter(name).check(value, shown=shown)
+    except ValueError as err:
+        raise InvalidStart(str(err), "parameter_range") from None
+
+
+# --- the state -------------------------------------------------------------------------------------
+
+def state(model: Model, values, precision: Precision) -> np.ndarray:
+    """The eight-component initial state at ``precision`` (not yet checked against the domain).
+
+    ``values`` is a mapping of state names (unset components are 0) or a sequence (list, tuple,
+    1-D array) of exactly eight values in the order ``theta, phi, psi, thetadot, phidot, psidot,
+    x, y``.
+    """
+    if values is None:
+        values = {}
+    if isinstance(values, Mapping):
+        values = dict(values)
+        unknown = sorted(set(values) - set(STATE_NAMES), key=str)
+        if unknown:
+            raise InvalidStart(f"unknown state variable {unknown[0]!r}; allowed: {STATE_ORDER}", "unknown_name")
+    else:
+        values = _sequence(values)
+    out = []
+    for name in STATE_NAMES:
+        raw = values.get(name, 0)
+        try:
+            out.append(precision.number(raw))
+        except (ValueError, TypeError) as err:
+            reason = "non_finite" if "finite" in str(err) else "not_a_number"
+            raise InvalidStart(f"state {name}={raw!r}: {err}", reason) from None
+    return precision.array(out)
+
+
+def _sequence(values) -> dict:
+    allowed = (f"allowed: a mapping of state names to values, or a sequence of {len(STATE_NAMES)} values in the "
+               f"order {STATE_ORDER}")
+    if isinstance(values, (str, bytes)):
+        raise InvalidStart(f"state={values!r} is a string; {allowed}", "shape")
+    if isinstance(values, np.ndarray):
+        if values.ndim != 1:
+            raise InvalidStart(f"state is an array of shape {values.shape}; {allowed}", "shape")
+        items = list(values)
+    else:
+        try:
+            items = list(values)
+        except TypeError:
+            raise InvalidStart(f"state={values!r} of type {type(values).__name__}; {allowed}", "shape") from None
+    if len(items) != len(STATE_NAMES):
+        raise InvalidStart(f"state has {len(items)} values ({_short(items)}); {allowed}", "shape")
+    return dict(zip(STATE_NAMES, items))
+
+
+def _short(items) -> str:
+    text = ", ".join(repr(v) for v in items[:4])
+    return text + (", ..." if len(items) > 4 else "")
+
+
+# --- the start as a whole --------------------------------------------------------------------------
+
+def start_problems(model: Model, states, normal=None, shown=None):
+    """The problems of each start, column by column: a list of (column, reason, message).
+
+    ``states`` is an (8, n) array (any of the precisions' dtypes); ``normal`` the normal force
+    N/(Mg) at each column (None where the model has no contact); ``shown`` optional per-column
+    mappings of the values as the user wrote them (for the messages).  Empty list: every start is
+    valid.  Each column reports its first problem only, in the order finite, domain, constraint,
+    normal force.
+    """
+    states = np.asarray(states)
+    n = states.shape[1]
+    as_float = np.array([[float(v) for v in row] for row in states]) if states.dtype == object else \
+        states.astype(float)
+    dom = model.domain
+    lo, hi = float(dom.theta_min), float(dom.theta_max)
+    problems, seen = [], set()
+
+    def add(cols, reason, message):
+        for j in cols:
+            j = int(j)
+            if j not in seen:
+                seen.add(j)
+                problems.append((j, reason, message(j)))
+
+    def shown_value(j, i):
+        if shown is not None and shown[j] is not None and STATE_NAMES[i] in shown[j]:
+            return shown[j][STATE_NAMES[i]]
+        return _text(states[i, j])
+
+    bad = ~np.isfinite(as_float)
+    add(np.flatnonzero(bad.any(axis=0)), "non_finite",
+        lambda j: f"state {STATE_NAMES[int(np.flatnonzero(bad[:, j])[0])]}="
+                  f"{shown_value(j, int(np.flatnonzero(bad[:, j])[0]))} is not a finite number")
+    th = as_float[0]
+    with np.errstate(invalid="ignore"):
+        outside = ~((lo < th) & (th < hi))
+    add(np.flatnonzero(outside), "outside_domain",
+        lambda j: f"state theta={shown_value(j, 0)} is outside the domain of {model.name!r}: {lo:.17g} < theta < "
+                  f"{hi:.17g} (at the lower end: {dom.below}; at the upper end: {dom.above})")
+    for name, expr, text in model.constraints:
+        values = _constraint_values(expr, states, as_float)
+        add(np.flatnonzero(values != 0), "constraint",
+            lambda j: f"state violates the constraint {name} = 0 ({text}); it is {float(values[j]):g}")
+    if normal is not None:
+        nf = np.array([float(v) for v in np.asarray(normal).ravel()])
+        with np.errstate(invalid="ignore"):
+            low = ~(nf > 0)
+        add(np.flatnonzero(low), "normal_force",
+            lambda j: (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]:.6g} <= 0: the body "
+                       "would leave the plane; allowed: states with N > 0") if math.isfinite(nf[j]) else
+                      (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]}: its rates overflow "
+                       "the precision; allowed: states with a finite N > 0"))
+    problems.sort()
+    return problems
+
+
+def _text(value) -> str:
+    try:
+        return repr(float(value)) if isinstance(value, (float, np.floating)) else str(value)
+    except (TypeError, ValueError):
+        return str(value)
+
+
+def _constraint_values(expr, states, as_float) -> np.ndarray:
+    """The constraint expression at each column: exactly (mpmath) for MPFR/quad, in the dtype otherwise."""
+    if states.dtype in (np.float64, np.longdouble):
+        f = _lambdified(expr)
+        out = np.asarray(f(*states), dtype=states.dtype)
+        return np.broadcast_to(out, (states.shape[1],))
+    out = []
+    for j in range(states.shape[1]):
+        col = [states[i, j] for i in range(len(STATE))]
+        bits = max(getattr(v, "prec", 113) for v in col) + 16
+        with mpmath.workprec(bits):
+            out.append(expr.subs({s: mpmath.mpf(str(v)) for s, v in zip(STATE, col)}))
+    return np.array([0.0 if v == 0 else float(v) if float(v) != 0 else math.copysign(1e-300, float(v))
+                     for v in out])
+
+
+@lru_cache(maxsize=None)
+def _lambdified(expr):
+    return sp.lambdify(list(STATE), expr, modules="numpy")
+
+
+def first_problem(model: Model, states, normal=None, shown=None):
+    """The first (column, reason, message) of :func:`start_problems`, or None."""
+    problems = start_problems(model, states, normal, shown)
+    return problems[0] if problems else None
+
+
+# --- one start at a run's precision (solve) --------------------------------------------------------
+
+def normal_force(compiled, y: np.ndarray, pars: dict):
+    """N/(Mg) at each column of ``y`` from the compiled model's own cfunc (None: no contact)."""
+    if not compiled.has_normal_force:
+        return None
+    prec = compiled.precision
+    n = y.shape[1]
+    p = np.ascontiguousarray(np.repeat(compiled.function_pars(prec.array(pars.values()))[:, None], n, axis=1))
+    out = compiled.invariant_function(np.ascontiguousarray(y), pars=p)
+    return out[compiled.n_invariants]
+
+
+def validate(model: Model, state_values, params, precision: Precision, compiled=None):
+    """(initial state, parameters) at ``precision``, or :class:`InvalidStart` naming the first problem.
+
+    The single entry point of ``solve``: parameters, state, then the start as a whole
+    (:func:`start_problems`) with the normal force from the compiled model at ``precision``.
+    """
+    pars = parameters(model, params, precision)
+    y0 = state(model, state_values, precision)
+    shown = [dict(state_values)] if isinstance(state_values, Mapping) else None
+    problem = first_problem(model, y0[:, None], None, shown)
+    if problem is None and model.normal_force is not None:
+        if compiled is None:
+            from .compile import compile_model
+
+            compiled = compile_model(model, precision)
+        problem = first_problem(model, y0[:, None], normal_force(compiled, y0[:, None].copy(), pars), shown)
+    if problem is not None:
+        raise InvalidStart(problem[2], problem[1])
+    return y0, pars
+
+
+# --- many starts in double (sweeps) ----------------------------------------------------------------
+
+@lru_cache(maxsize=None)
+def normal_force_function(model_name: str):
+    """A double-precision cfunc of N/(Mg) over columns (state rows, then the model's parameters), or None."""
+    from models import get_model
+
+    from .compile import symbol_map, to_heyoka
+
+    model = get_model(model_name)
+    if model.normal_force is None:
+        return None
+    variables = list(hy.make_vars(*STATE_NAMES))
+    return hy.cfunc([to_heyoka(model.normal_force, symbol_map(model, variables))], variables)
+
+
+def normal_force_columns(model_name: str, states: np.ndarray, pars: np.ndarray):
+    """N/(Mg) at each column of ``states`` (8, n) with per-column parameters ``pars`` (n_pars, n), in double."""
+    f = normal_force_function(model_name)
+    if f is None:
+        return None
+    states = np.ascontiguousarray(states[:8], dtype=float)
+    p = np.ascontiguousarray(pars[: f.nparams], dtype=float)
+    if f.nparams == 0:
+        return f(states)[0]
+    return f(states, pars=p)[0]
