@@ -71,8 +71,9 @@ from models.rolling import derive
 from models.symbols import STATE_NAMES, g, phidot, psidot, theta, thetadot
 
 from .. import invariants as inv
+from .. import validation
 from ..compile import compile_model, symbol_map, to_heyoka
-from ..integrate import IntegrationError, max_step, resolve_parameters, resolve_state
+from ..integrate import IntegrationError, max_step, resolve_parameters
 from ..precision import parse_precision
 from .spindown import spindown
 
@@ -430,15 +431,11 @@ def integrate_with_work(name: str, t_eval, c=None, state=None, *, params=None, t
     values = dict(params or {})
     if c is not None:
         values["c"] = c
-    pars = resolve_parameters(model, values, prec)
+    resolve_parameters(model, values, prec)
     if state is None:
         s = spindown("disk", THETA0, "cm-at-rest", {k: v for k, v in values.items() if k != "c"})
         state = {"theta": THETA0, "phidot": mpmath.nstr(s.phidot, 45), "psidot": mpmath.nstr(s.psidot, 45)}
-    y0 = resolve_state(model, state, prec)
-    _, normal0 = inv.evaluate(compiled, y0[:, None].copy(), pars)
-    if not float(normal0[0]) > 0:
-        raise ValueError(f"the initial state has normal force N/(Mg) = {float(normal0[0]):.6g} <= 0: "
-                         "the disk would leave the plane; allowed: states with N > 0")
+    y0, pars = validation.validate(model, state, values, prec, compiled)  # as solve checks a start
     th_stop = prec.number(theta_stop)
     if not 0 < float(th_stop) < float(y0[0]):
         raise ValueError(f"theta_stop={theta_stop} must lie in (0, theta(0) = {float(y0[0]):.17g})")

@@ -360,9 +360,19 @@ def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: di
     from verify.integrate import resolve_parameters
     from verify.precision import parse_precision
 
+    from verify import validation
+
     mdl = get_model(model)
     pars = [float(v) for v in resolve_parameters(mdl, params, parse_precision("double")).values()]
     y0, bounds, ths = _initial_conditions(model, motion, rates, tilts, params, cap)
+    full = np.zeros((8, y0.shape[1]))  # every start checked as solve and the sweeps check theirs
+    full[[0, 3, 4, 5]] = y0
+    normal = validation.normal_force_columns(model, full, np.repeat(np.array(pars)[:, None], y0.shape[1], axis=1))
+    problem = validation.first_problem(mdl, full, normal)
+    if problem is not None:
+        k = problem[0]
+        raise validation.InvalidStart(f"map point rate = {float(rates[k % len(rates)])!r}, tilt = "
+                                      f"{float(tilts[k // len(rates)])!r}: {problem[2]}", problem[1])
     fastest = max(float(np.max(np.abs(y0[2:]))), math.sqrt(dict(zip(mdl.parameter_names, pars)).get("g", 1.0)))
     states, lane_pars = _lane_arrays(y0, bounds, pars, batch_size)
     n = y0.shape[1]

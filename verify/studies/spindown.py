@@ -25,6 +25,11 @@ from models.symbols import STATE, phidot, psidot, theta, thetadot
 FAMILIES = ("cm-at-rest", "zero-vertical-spin")
 MODELS = ("disk", "ring")
 DPS = 50
+# phidot^2 = -f(0) / (f(1) - f(0)) with f(1) - f(0) ~ theta f(0): the difference loses
+# log10(1/theta) digits, so the working precision is DPS + 10 + log10(1/theta) digits (at a fixed
+# DPS + 10, theta = 1e-60 lost all of them: ZeroDivisionError).  THETA_MIN bounds that growth
+# (1060 digits at most, milliseconds); it is not a limit of the method.
+THETA_MIN = "1e-1000"
 
 
 @dataclass(frozen=True)
@@ -64,6 +69,9 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
     from verify.precision import parse_precision
 
     resolve_parameters(model, params, parse_precision("double"))  # names and ranges
+    from .thresholds import check_reading
+
+    check_reading(params, "spin-down study")
     with mpmath.workdps(DPS + 10):
         try:
             th = mpmath.mpf(theta_value)
@@ -72,7 +80,13 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
         top = mpmath.pi / 2
         if not (mpmath.isfinite(th) and 0 < th < top):
             raise ValueError(f"--theta {theta_value} is outside (0, pi/2): the spin-down families need a leaning body")
-        pv = {p.name: mpmath.mpf(sp.N(sp.nsimplify(params[p.name]) if p.name in params else p.default, DPS + 10))
+        if th < mpmath.mpf(THETA_MIN):
+            raise ValueError(f"--theta {theta_value} is below {THETA_MIN}; allowed: {THETA_MIN} <= theta < pi/2 (the "
+                             "working precision grows as log10(1/theta) digits)")
+        digits = DPS + 10 + max(0, int(mpmath.ceil(-mpmath.log10(th))))
+    with mpmath.workdps(digits):
+        th = mpmath.mpf(theta_value)
+        pv = {p.name: mpmath.mpf(sp.N(sp.nsimplify(params[p.name]) if p.name in params else p.default, digits))
               for p in model.parameters}
         ratio = _psidot_ratio(model, family)
         row = model.accelerations[0].subs({thetadot: 0, psidot: ratio * phidot})

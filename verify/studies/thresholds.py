@@ -70,6 +70,25 @@ def stability_coefficient(model, steady: dict):
     return -(a + c * e + d * f)
 
 
+def check_reading(params: dict, study: str) -> None:
+    """Input validation: every parameter given as a decimal string must be read by the studies
+    (``sp.nsimplify``, below and in spindown.py) as the number typed, to 15 digits.  nsimplify
+    reads 1e-300 as 0 (and then divides by it) and 0.1111111111 as 1/9; such values are refused,
+    naming what they would become."""
+    tiny = sp.Rational(1, 10**15)
+    for name, value in params.items():
+        if not isinstance(value, str):
+            continue
+        try:
+            exact = sp.Rational(value.strip())
+        except (TypeError, ValueError, sp.SympifyError):
+            continue  # not a decimal: resolve_parameters names it
+        read = sp.nsimplify(value)
+        if read != exact and (exact == 0 or abs((read - exact) / exact) > tiny):
+            raise ValueError(f"parameter {name}={value}: the {study} would read it as {read} (sympy's nsimplify); allowed: "
+                             "a value it keeps to 15 digits (magnitude above ~1e-30; a repeating decimal to 16 digits)")
+
+
 def _params(model, values: dict) -> dict:
     out = {}
     for p in model.parameters:
@@ -108,7 +127,13 @@ def threshold(name: str, motion: str, params: Optional[dict] = None, dps: int = 
     from verify.integrate import resolve_parameters
     from verify.precision import parse_precision
 
-    resolve_parameters(model, params, parse_precision("double"))  # validates ranges
+    values = resolve_parameters(model, params, parse_precision("double"))  # validates ranges
+    check_reading(params, "threshold study")
+    if name == "hurricane" and motion == "precession" and not values["I1"] > values["I3"]:
+        # Eq. 72, cos(theta0) = (I3 - g/Omega^2)/(I1 - I3), is scanned from the slow-spin limit
+        # sqrt(g/I3) upwards: that branch lies in 0 < theta0 < pi/2 only for I1 > I3.
+        raise ValueError(f"hurricane precession with I1={values['I1']:g}, I3={values['I3']:g}: the Eq. 72 branch this "
+                         "study scans (rates above sqrt(g/I3)) needs I1 > I3; allowed: I3 < I1")
     subs = _params(model, params)
     shown = {p.name: str(sp.N(subs[p.symbol], 20)) for p in model.parameters}
     if motion in ("diameter-spin", "straight-line") and name in ("disk", "sliding-disk"):

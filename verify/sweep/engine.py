@@ -20,6 +20,35 @@ the loss of contact (N = 0) where the model has a contact.
 Every point's result depends on its own inputs only (lanes do not interact; their step sizes
 are their own), so a chunk gives the same rows in any process, on threads or on a Dask
 worker, whatever ran before it.
+
+Validation and failures
+-----------------------
+Every point of the grid is checked as a start (:func:`validate_points`, by
+:mod:`verify.validation`, as ``solve`` checks one) before the store is created, and the first
+invalid point refuses the whole sweep (:class:`verify.sweep.spec.InvalidPoint`, naming it).  Why
+refuse rather than store ``invalid:<reason>`` rows: an invalid point is a start that does not
+exist (theta outside the domain, N <= 0: the body is already off the plane, a parameter out of
+its physical range), so a grid that contains one was mis-drawn -- its axes cross the edge of the
+model -- and the fix is to redraw them; storing such rows would make every reader of a store
+(the maps, the retrograde study, anyone's SQL) filter them out or mistake them for motions (the
+former ``contact_lost at t ~ 0.01 s`` rows were exactly that), would tie the store's identity
+to the mis-drawn spec, and would spend a chunk's work on points that have no dynamics.  A
+refusal costs one pass over the grid's starts (no integration) and nothing on disk.
+
+A valid start can still fail to integrate.  Such a run is stored, with its own outcome and NaN
+quantities (white on a map, never data), as in ``solve``:
+
+* ``failed:non_finite`` -- heyoka stopped the lane on a non-finite state, or a sample is not finite;
+* ``failed:event_detection`` -- heyoka warned that event detection failed in the lane
+  (:mod:`verify.heyoka_log`), or a sample before the lane's stop lies outside the domain, below
+  ``[stop] theta_below``, or at N <= 0, without the event that should have stopped it there;
+* ``failed:step_size_collapse`` -- the run needed more than COLLAPSE_FACTOR (t_end x the fastest
+  initial rate) steps, i.e. its steps averaged below 2^-15 of the step cap, as in ``solve``.
+
+A batch in which any of these happens (or any heyoka warning in the chunk, which names a lane but
+not its batch) is integrated again lane by lane, each lane alone in a batch of copies of itself:
+lanes are independent, so a good lane gets the same bits it got in the mixed batch, and a failed
+lane is told apart from its neighbours.
 """
 from __future__ import annotations
 
@@ -36,10 +65,13 @@ from models import get_model
 from models.ring_dissipation import annulus_inertia
 from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
 
+from .. import heyoka_log, validation
 from ..circling import circling, theta_maxima
 from ..compile import to_heyoka
+from ..integrate import COLLAPSE_FACTOR
 from ..lanes import simd_width
-from .spec import SENSE_KEYS, SweepSpec
+from ..precision import parse_precision
+from .spec import SENSE_KEYS, InvalidPoint, SweepSpec
 
 EXTRA = ("alive", "reason", "t_stop", "theta_stop")
 WINDOWS = 20  # a run without nutation is read over 20 equal windows
@@ -121,64 +153,190 @@ def system(model_name: str, batch_size: int, cooldown: float) -> System:
 
 # --- inputs of a chunk ---------------------------------------------------------------------------
 
+_PARAMETER_AXES_EXCLUDE = set(STATE_NAMES) | {"tilt"}
+
+
 def lane_inputs(spec: SweepSpec, indices) -> tuple:
     """(states (8, n), model parameters (n_pars, n), theta_ref (n)) of the points ``indices``.
 
     theta_ref is the start's theta before any tilt: the steady angle for ``[start] steady``.
+    Raises :class:`InvalidPoint` for the first point whose parameters are invalid (or whose
+    steady motion does not exist); the start as a whole is checked by :func:`point_problems`.
     """
-    from ..integrate import resolve_parameters
-    from ..precision import parse_precision
+    states, pars, refs, problems = _inputs(spec, indices)
+    if problems:
+        raise _refusal(spec, np.asarray(indices, dtype=np.int64), problems[0])
+    return states, pars, refs
 
+
+def _inputs(spec: SweepSpec, indices) -> tuple:
+    """lane_inputs without raising: (states, pars, refs, [(column, reason, message)]) -- the
+    columns of points with bad parameters are NaN.  Vectorised over the points: the parameters
+    are resolved once per distinct combination, the steady motion once per distinct rate."""
+    idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)
+    n = len(idx)
     model = get_model(spec.model)
-    prec = parse_precision("double")
-    states, pars, refs = [], [], []
-    for i in indices:
-        point = spec.point(i)
-        values = {**spec.params, **{k: v for k, v in point.items() if k in spec.params or k not in STATE_NAMES}}
-        values.pop("tilt", None)
-        if spec.geometry == "annulus":
-            hh, ww = values.get("h"), values.pop("w")
-            i1, i3 = annulus_inertia(hh, ww)
-            values.update(I1=i1, I3=i3)
-            if "w" in model.parameter_names:
-                values["w"] = ww
-        resolved = resolve_parameters(model, {k: repr(float(v)) for k, v in values.items()}, prec)
-        start = {**spec.start, **{k: v for k, v in point.items() if k in STATE_NAMES}}
-        ref = start.get("theta", 0.0)
-        if spec.steady is not None:
-            steady = _steady(spec.model, spec.steady, point, {k: repr(float(v)) for k, v in values.items()})
-            start.update(steady)
-            ref = steady["theta"]
-        y = np.zeros(8)
-        for k, v in start.items():
-            y[STATE_NAMES.index(k)] = v
-        y[TH] = ref + point.get("tilt", 0.0)
-        states.append(y)
-        pars.append([float(v) for v in resolved.values()])
-        refs.append(ref)
-    return np.array(states).T, np.array(pars).T, np.array(refs)
+    cols = spec.columns(idx)
+    problems = []
+    # parameters: [params], then the parameter axes (and w), once per distinct combination
+    names = [a.name for a in spec.axes if a.name not in _PARAMETER_AXES_EXCLUDE]
+    if names:
+        stacked = np.stack([cols[k] for k in names], axis=1)
+        combos, first, inverse = np.unique(stacked, axis=0, return_index=True, return_inverse=True)
+        inverse = inverse.reshape(-1)
+    else:
+        combos, first, inverse = np.zeros((1, 0)), np.array([0]), np.zeros(n, dtype=np.int64)
+    combo_pars = np.full((len(combos), len(model.parameters)), np.nan)
+    texts = [None] * len(combos)
+    for c in np.argsort(first, kind="stable"):
+        items = tuple(spec.params.items()) + tuple(zip(names, (float(v) for v in combos[c])))
+        try:
+            values, texts[c] = _resolved(spec.model, spec.geometry, items)
+        except validation.InvalidStart as err:
+            problems.append((int(first[c]), err.reason, str(err)))
+            continue
+        combo_pars[c] = values
+    pars = np.ascontiguousarray(combo_pars[inverse].T)
+    states = np.zeros((8, n))
+    for k, v in spec.start.items():
+        states[STATE_NAMES.index(k)] = v
+    for a in spec.axes:
+        if a.name in STATE_NAMES:
+            states[STATE_NAMES.index(a.name)] = cols[a.name]
+    refs = states[TH].copy()  # start.get("theta", 0.0)
+    if spec.steady is not None:
+        from .spec import RATE_AXIS
+
+        rate = cols[RATE_AXIS[spec.steady]]
+        keys = np.stack([inverse.astype(float), rate], axis=1)
+        groups, gfirst, ginv = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+        ginv = ginv.reshape(-1)
+        table = {}  # state name -> value per group
+        for g in np.argsort(gfirst, kind="stable"):
+            c = int(groups[g][0])
+            if texts[c] is None:
+                continue  # its parameters are already refused
+            try:
+                steady = _steady_cached(spec.model, spec.steady, repr(float(groups[g][1])), texts[c])
+            except (ValueError, TypeError, ArithmeticError) as err:
+                problems.append((int(gfirst[g]), "no_steady", f"no steady {spec.steady} of {spec.model!r} at "
+                                 f"{RATE_AXIS[spec.steady]} = {float(groups[g][1])!r}: {err}"))
+                combo_pars[c] = np.nan
+                continue
+            for k, v in steady.items():
+                table.setdefault(k, np.full(len(groups), np.nan))[g] = v
+        for k, column in table.items():
+            states[STATE_NAMES.index(k)] = column[ginv]
+        if "theta" in table:
+            refs = table["theta"][ginv]
+        pars = np.ascontiguousarray(combo_pars[inverse].T)
+    bad = np.isnan(pars).any(axis=0) if len(model.parameters) else np.zeros(n, bool)
+    states[TH] = refs + (cols["tilt"] if "tilt" in cols else 0.0)
+    states[:, bad] = np.nan
+    problems.sort()
+    return states, pars, refs, problems
 
 
-def _steady(model: str, motion: str, point: dict, params: dict) -> dict:
+@lru_cache(maxsize=4096)
+def _resolved(model_name: str, geometry, items: tuple) -> tuple:
+    """(parameter values in model order, the parameters as decimal strings) of one combination."""
+    model = get_model(model_name)
+    values = dict(items)
+    values.pop("tilt", None)
+    if geometry == "annulus":
+        hh, ww = values.get("h"), values.pop("w")
+        i1, i3 = annulus_inertia(hh, ww)
+        values.update(I1=i1, I3=i3)
+        if "w" in model.parameter_names:
+            values["w"] = ww
+    text = {k: repr(float(v)) for k, v in values.items()}
+    resolved = validation.parameters(model, text, parse_precision("double"))
+    return tuple(float(v) for v in resolved.values()), tuple(text.items())
+
+
+@lru_cache(maxsize=4096)
+def _steady_cached(model: str, motion: str, rate: str, params: tuple) -> dict:
     from ..studies.thresholds import steady_state
-    from .spec import RATE_AXIS
 
-    s = steady_state(model, motion, repr(float(point[RATE_AXIS[motion]])), params)
+    s = steady_state(model, motion, rate, dict(params))
     with mpmath.workdps(40):
         return {k: float(mpmath.mpf(v)) for k, v in s.items()}
+
+
+def point_problems(spec: SweepSpec, indices) -> list:
+    """[(index, reason, message)] of the points ``indices`` that are not valid starts, in index order.
+
+    The checks of :mod:`verify.validation` (the parameters together, finite, theta in the
+    domain, the model's constraints, N > 0), plus theta above ``[stop] theta_below``.
+    """
+    idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)
+    return _problems(spec, idx, *_inputs(spec, idx))
+
+
+def _problems(spec: SweepSpec, idx, states, pars, refs, problems) -> list:
+    model = get_model(spec.model)
+    problems = list(problems)
+    good = ~np.isnan(pars).any(axis=0) if len(model.parameters) else np.ones(len(idx), bool)
+    cols = np.flatnonzero(good)
+    if len(cols):
+        sub, psub = states[:, cols], pars[:, cols]
+        normal = validation.normal_force_columns(spec.model, sub, psub)
+        for j, reason, message in validation.start_problems(model, sub, normal):
+            problems.append((int(cols[j]), reason, message))
+        if spec.theta_stop is not None:
+            below = np.flatnonzero(~(sub[TH] > spec.theta_stop))
+            for j in below:
+                problems.append((int(cols[j]), "below_stop", f"theta = {sub[TH, j]!r} is not above [stop] theta_below = "
+                                 f"{spec.theta_stop!r}, so the run would never stop there"))
+    problems.sort()
+    return [(int(idx[c]), reason, message) for c, reason, message in problems]
+
+
+def _refusal(spec: SweepSpec, idx, problem) -> InvalidPoint:
+    col, reason, message = problem
+    index = int(idx[col])
+    return _invalid(spec, index, reason, message)
+
+
+def _invalid(spec: SweepSpec, index: int, reason: str, message: str) -> InvalidPoint:
+    point = spec.point(index)
+    shown = ", ".join(f"{k} = {v!r}" for k, v in point.items())
+    return InvalidPoint(f"sweep {spec.name!r}: point {index} of {spec.n_points} ({shown}) is not a valid start: "
+                        f"{message} -- a sweep runs only if every point of its grid is a valid start: change the "
+                        "axes' from/to/count, [start] or [params]", index, point, reason)
+
+
+#: Points validated at a time by :func:`validate_points` (their inputs are ~100 bytes each).
+VALIDATION_BLOCK = 1 << 16
+
+
+def validate_points(spec: SweepSpec, block: int = VALIDATION_BLOCK) -> None:
+    """Check every point of the grid as a start, a block at a time; raise :class:`InvalidPoint`
+    naming the first invalid one (see the module docstring: a sweep with one is refused)."""
+    for start in range(0, spec.n_points, block):
+        idx = np.arange(start, min(start + block, spec.n_points), dtype=np.int64)
+        problems = point_problems(spec, idx)
+        if problems:
+            index, reason, message = problems[0]
+            raise _invalid(spec, index, reason, message)
 
 
 def fastest_rate(spec: SweepSpec) -> float:
     """The largest initial rate over the whole sweep (or sqrt(g)): the step cap is 1 / it, as in solve()."""
     rates = [abs(spec.start.get(n, 0.0)) for n in ("thetadot", "phidot", "psidot")]
     for a in spec.axes:
-        if a.name in ("thetadot", "phidot", "psidot"):
-            rates += [abs(v) for v in a.values]
+        if a.name in ("thetadot", "phidot", "psidot"):  # a monotone axis: its ends are its extremes
+            rates += [abs(v) for v in a.values.extremes]
     g = spec.params.get("g", 980.0)
     for a in spec.axes:
         if a.name == "g":
-            g = max(a.values)
+            g = a.values.extremes[1]
     return max(rates + [math.sqrt(g)])
+
+
+def step_budget(spec: SweepSpec) -> int:
+    """The most steps a run may take: COLLAPSE_FACTOR (t_end x the fastest rate) (see the module docstring)."""
+    return int(COLLAPSE_FACTOR * spec.t_end * fastest_rate(spec)) + COLLAPSE_FACTOR
 
 
 # --- a chunk ---------------------------------------------------------------------------------------
@@ -191,18 +349,24 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     bs = batch_size or simd_width()
     cooldown = 2.0 * spec.t_end + 1.0
     sysm = system(spec.model, bs, cooldown)
-    states, model_pars, refs = lane_inputs(spec, indices)
+    idx = np.asarray(indices, dtype=np.int64)
+    inputs = _inputs(spec, idx)
+    problems = _problems(spec, idx, *inputs)  # validated before the store was made; a worker checks again
+    if problems:
+        raise _invalid(spec, *problems[0])
+    states, model_pars, refs, _ = inputs
     n = len(indices)
     padded = -(-n // bs) * bs
-    idx = np.minimum(np.arange(padded), n - 1)
+    pad = np.minimum(np.arange(padded), n - 1)
     lane_states = np.zeros((sysm.n_states, padded))
-    lane_states[:8] = states[:, idx]
+    lane_states[:8] = states[:, pad]
     lane_pars = np.zeros((sysm.n_model_pars + len(EXTRA), padded))
-    lane_pars[: sysm.n_model_pars] = model_pars[:, idx]
+    lane_pars[: sysm.n_model_pars] = model_pars[:, pad]
     lane_pars[sysm.n_model_pars] = 1.0
     lane_pars[sysm.n_model_pars + 2] = np.nan
     lane_pars[sysm.n_model_pars + 3] = spec.theta_stop if spec.theta_stop is not None else -1.0
     grid = np.linspace(0.0, spec.t_end, spec.samples)
+    options = {"max_delta_t": 1.0 / fastest_rate(spec), "max_steps": step_budget(spec)}
 
     def gen(ta, i):
         cols = slice(i * bs, (i + 1) * bs)
@@ -211,21 +375,96 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
         ta.pars[:] = lane_pars[:, cols]
         return ta
 
-    results = hy.ensemble_propagate_grid_batch(sysm.template, grid, padded // bs, gen, max_workers=max(1, threads),
-                                               max_delta_t=1.0 / fastest_rate(spec))
+    with heyoka_log.collect() as messages:
+        results = hy.ensemble_propagate_grid_batch(sysm.template, grid, padded // bs, gen,
+                                                   max_workers=max(1, threads), **options)
     rows = []
     for b, res in enumerate(results):
         local, out = res[0], res[-1]
-        outcomes = [r[0] for r in local.propagate_res]
-        if any(o != hy.taylor_outcome.time_limit for o in outcomes) or out.shape[0] != len(grid):
-            raise RuntimeError(f"chunk {chunk}, batch {b} of sweep {spec.name!r} failed: {outcomes}")
-        for lane in range(bs):
-            k = b * bs + lane
-            if k >= n:
-                break
-            rows.append(_reduce(spec, sysm, indices[k], grid, out[:, :, lane], local.pars[:, lane],
-                                model_pars[:, k], refs[k]))
+        lanes = [(k, b * bs + k) for k in range(bs) if b * bs + k < n]
+        if messages or not _batch_ok(local, out, grid):
+            for lane, k in lanes:  # again, each lane alone (module docstring)
+                one_local, one_out, warned = _alone(sysm, grid, lane_states[:, k], lane_pars[:, k], options)
+                rows.append(_row(spec, sysm, indices[k], grid, one_local, one_out, 0, model_pars[:, k], refs[k],
+                                 warned))
+            continue
+        for lane, k in lanes:
+            rows.append(_row(spec, sysm, indices[k], grid, local, out, lane, model_pars[:, k], refs[k], []))
     return rows
+
+
+def _batch_ok(local, out, grid) -> bool:
+    outcomes = [r[0] for r in local.propagate_res]
+    return all(o == hy.taylor_outcome.time_limit for o in outcomes) and out.shape[0] == len(grid)
+
+
+def _alone(sysm: System, grid, state_col, pars_col, options) -> tuple:
+    """One lane integrated alone, in a batch of copies of itself: (integrator, output, heyoka's messages)."""
+    bs = sysm.template.batch_size
+
+    def gen(ta, i):
+        ta.set_time(0.0)
+        ta.state[:] = np.repeat(state_col[:, None], bs, axis=1)
+        ta.pars[:] = np.repeat(pars_col[:, None], bs, axis=1)
+        return ta
+
+    with heyoka_log.collect() as messages:
+        res = hy.ensemble_propagate_grid_batch(sysm.template, grid, 1, gen, max_workers=1, **options)[0]
+    return res[0], res[-1], list(messages)
+
+
+def _row(spec, sysm, index, grid, local, out, lane, model_pars, ref, warned) -> dict:
+    """The row of one lane: its failure if it failed, else the reductions of its samples."""
+    outcome = local.propagate_res[lane][0]
+    lane_pars = local.pars[:, lane]
+    n = sysm.n_model_pars
+    t_fail = float(local.time[lane])
+    if outcome == hy.taylor_outcome.err_nf_state:
+        return _failed_row(spec, index, "failed:non_finite", t_fail)
+    if outcome != hy.taylor_outcome.time_limit:
+        return _failed_row(spec, index, "failed:step_size_collapse", t_fail)
+    if any(m.event_detection or m.level in ("error", "critical") for m in warned):
+        reason = int(lane_pars[n + 1])
+        return _failed_row(spec, index, "failed:event_detection", float(lane_pars[n + 2]) if reason else t_fail)
+    samples = out[:, :, lane] if out.shape[0] == len(grid) else np.full((len(grid), sysm.n_states), np.nan)
+    return _reduce(spec, sysm, index, grid, samples, lane_pars, model_pars, ref)
+
+
+def _failed_row(spec: SweepSpec, index: int, outcome: str, t_stop: float) -> dict:
+    row = {"idx": index, **{f"in_{k}": v for k, v in spec.point(index).items()}, "outcome": outcome,
+           "t_stop": t_stop, "energy_drift_vs_terms": math.nan}
+    for name in spec.record:
+        row[name] = math.nan
+    return row
+
+
+def _guard(spec: SweepSpec, sysm: System, t, y, model_pars, t_stop):
+    """(outcome, time) of the first sample that should not exist, or None (module docstring).
+
+    Every sample before the lane's stop must be finite, inside the domain, above ``[stop]
+    theta_below`` and at N > 0; at a sample on the stop time itself the stopping event's own
+    function is ~0, so the samples checked are those strictly before it.
+    """
+    check = t < t_stop if t_stop is not None else np.ones(len(t), bool)
+    check[0] = True
+    ys = y[check][:, :8]
+    ts = t[check]
+    finite = np.isfinite(ys).all(axis=1)
+    if not finite.all():
+        return "failed:non_finite", float(ts[np.argmin(finite)])
+    model = get_model(spec.model)
+    lo, hi = float(model.domain.theta_min), float(model.domain.theta_max)
+    th = ys[:, TH]
+    ok = (lo < th) & (th < hi)
+    if spec.theta_stop is not None:
+        ok &= th > spec.theta_stop
+    normal = validation.normal_force_columns(spec.model, ys.T, np.repeat(np.asarray(model_pars, float)[:, None],
+                                                                          len(ts), axis=1))
+    if normal is not None:
+        ok &= normal > 0
+    if not ok.all():
+        return "failed:event_detection", float(ts[np.argmin(ok)])
+    return None
 
 
 def _reduce(spec: SweepSpec, sysm: System, index: int, grid, samples, lane_pars, model_pars, ref) -> dict:
@@ -237,6 +476,9 @@ def _reduce(spec: SweepSpec, sysm: System, index: int, grid, samples, lane_pars,
     keep[0] = True
     y = samples[keep]
     t = grid[keep]
+    failed = _guard(spec, sysm, t, y, model_pars, t_stop if reason else None)
+    if failed is not None:
+        return _failed_row(spec, index, *failed)
     diag = sysm.diagnostics(np.ascontiguousarray(y[:, :8].T), pars=np.ascontiguousarray(
         np.repeat(model_pars[:sysm.diagnostics.nparams, None], len(t), axis=1)))
     omega_z, terms = diag[0], diag[1:]

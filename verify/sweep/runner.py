@@ -8,6 +8,35 @@ threads and returns the rows; this process writes them into the same store as th
 Either way a progress bar goes to stderr (a line per update when stderr is not a terminal).
 
 Workers need this package importable (on a remote cluster: installed on every worker).
+
+Before anything is computed or written, :func:`run_sweep` states the sweep's size (points,
+memory, store, rough time: :func:`estimate`), refuses it with :class:`SweepTooLarge` when it
+exceeds :data:`LIMITS` unless ``yes=True`` (the command line's ``--yes``), then checks every
+point of the grid as a start (:func:`verify.sweep.engine.validate_points`), and only then opens
+or creates the store.
+
+The limits, and why
+-------------------
+* **points: 10^7.**  The shipped sweeps have 72 to 10^4 points; 10^7 is a thousand times the
+  largest.  At the measured 300 to 3000 ten-second disk runs a second on two cores
+  (reports/BENCHMARKS.md: 336 for random starts; near-steady starts are faster) it is one to ten
+  hours and a store of about a gigabyte -- and beyond it lie typos: an extra zero on one axis's
+  count is 10x, ``count = 100000000`` on two axes is 10^16 points (which took 11.9 GB in 40 s
+  before the axes were made lazy and this check was added).
+* **memory: 2 GiB per chunk.**  A chunk holds every sample of every lane at once (heyoka's dense
+  output, ``lanes x samples x states x 8`` bytes, padded to whole batches), plus the reductions'
+  copies; under Dask each worker holds one.  2 GiB leaves room beside the OS and the JIT on the
+  smallest machines this runs on (CI runners have 7 GiB); the shipped sweeps need 0.5 to 150 MiB.
+  A too-large chunk is fixed by a smaller ``[sweep] chunk`` or fewer ``samples``.
+* **store: 2 GiB on disk**, the same bound for what is written (~8 bytes a column a row plus
+  SQLite's overhead); a 10^7-point sweep recording a few quantities stays under it.
+* **time: 24 hours** (estimated, roughly: from the steps a run needs, omega h ~ 0.03 at the fastest
+  initial rate over t_end, and ~10^6 lane-steps a second a thread; against measured runs it is
+  within a factor of 3 either way: 1.4 s for 0.56 s on near-steady disk runs, 5 s for 3 s on the
+  benchmark's random ones, 6 s for 7.9 s on the ring retrograde sweeps with their reductions).
+  A run of a day is a decision, not a default.
+
+Each limit is a module constant; ``yes=True`` runs a sweep beyond them all.
 """
 from __future__ import annotations
 
@@ -17,13 +46,94 @@ import sys
 import time
 from dataclasses import dataclass
 
-from .engine import run_chunk
-from .spec import SweepSpec, parse
-from .store import Store
+from .engine import fastest_rate, run_chunk, validate_points
+from .spec import SpecError, SweepSpec, parse
+from .store import Store, columns
+
+#: The bounds a sweep must stay within unless run with ``yes=True`` (module docstring).
+LIMITS = {"points": 10_000_000, "memory_bytes": 2 * 1024 ** 3, "store_bytes": 2 * 1024 ** 3, "seconds": 24 * 3600.0}
+#: Lane-steps a second on one thread, and the typical omega h of a step: for the rough time.
+LANE_STEPS_PER_SECOND = 1.0e6
+STEP_RADIANS = 0.03
 
 
 class ClusterError(ValueError):
     """A Dask address that is malformed or does not answer; the message names it."""
+
+
+class SweepTooLarge(SpecError):
+    """A sweep beyond :data:`LIMITS`; ``estimate`` says by how much.  ``yes=True`` (``--yes``) runs it."""
+
+    def __init__(self, message: str, estimate):
+        super().__init__(message)
+        self.estimate = estimate
+
+
+@dataclass(frozen=True)
+class Estimate:
+    """What a sweep will cost, before it starts (rough: see the module docstring)."""
+
+    points: int
+    chunks: int
+    memory_bytes: int  # per chunk in this process (each Dask worker holds one)
+    store_bytes: int
+    seconds: float  # rough, on ``threads`` threads
+    threads: int
+
+    def over(self) -> list:
+        """The limits this sweep exceeds, in words (empty: none)."""
+        out = []
+        if self.points > LIMITS["points"]:
+            out.append(f"{self.points:,} points (limit {LIMITS['points']:,})")
+        if self.memory_bytes > LIMITS["memory_bytes"]:
+            out.append(f"{_bytes(self.memory_bytes)} of memory per chunk (limit {_bytes(LIMITS['memory_bytes'])})")
+        if self.store_bytes > LIMITS["store_bytes"]:
+            out.append(f"a store of {_bytes(self.store_bytes)} (limit {_bytes(LIMITS['store_bytes'])})")
+        if self.seconds > LIMITS["seconds"]:
+            out.append(f"roughly {_duration(self.seconds)} of computing (limit {_duration(LIMITS['seconds'])})")
+        return out
+
+    def describe(self, name: str) -> str:
+        return (f"{name}: {self.points:,} points in {self.chunks:,} chunks, ~{_bytes(self.memory_bytes)} of memory "
+                f"per chunk, a store of ~{_bytes(self.store_bytes)}, roughly {_duration(self.seconds)} on "
+                f"{self.threads} thread{'s' if self.threads != 1 else ''}")
+
+
+def estimate(spec: SweepSpec, threads: int = None) -> Estimate:
+    """Points, memory per chunk, store size and a rough time of ``spec``, from its text alone."""
+    from ..lanes import simd_width
+    from models import get_model
+
+    threads = threads or os.cpu_count() or 1
+    bs = simd_width()
+    lanes = -(-min(spec.chunk, spec.n_points) // bs) * bs
+    n_states = 8 + (get_model(spec.model).dissipation is not None)
+    # the dense output of every lane, plus ~1 copy for the reductions and the inputs
+    memory = int(lanes * spec.samples * n_states * 8 * 1.5) + lanes * 1024
+    store = spec.n_points * (8 * len(columns(spec)) + 40)
+    steps = spec.t_end * fastest_rate(spec) / STEP_RADIANS
+    seconds = spec.n_points * steps / (LANE_STEPS_PER_SECOND * threads)
+    return Estimate(spec.n_points, spec.n_chunks, memory, store, seconds, threads)
+
+
+def _bytes(n: float) -> str:
+    for unit in ("bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"):
+        if n < 1024 or unit == "EiB":
+            return f"{n:.0f} {unit}" if unit == "bytes" else f"{n:.3g} {unit}"
+        n /= 1024
+    return f"{n:.3g} EiB"  # pragma: no cover
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 3 * 86400:
+        return f"{seconds / 3600:.1f} h"
+    if seconds < 3 * 365 * 86400:
+        return f"{seconds / 86400:.0f} days"
+    return f"{seconds / (365.25 * 86400):.3g} years"
 
 
 @dataclass(frozen=True)
@@ -38,6 +148,7 @@ class SweepResult:
     rows: int
     seconds: float
     where: str  # "local (N threads)" or the Dask scheduler's address
+    estimate: "Estimate" = None  # what it was expected to cost
 
 
 def chunk_task(spec_text: str, chunk: int, threads: int = 1) -> tuple:
@@ -81,10 +192,24 @@ class Progress:
 
 
 def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: bool = True,
-              store_path=None) -> SweepResult:
-    """Run every chunk of ``spec`` that its store does not hold yet, and write each as it finishes."""
+              store_path=None, yes: bool = False) -> SweepResult:
+    """Run every chunk of ``spec`` that its store does not hold yet, and write each as it finishes.
+
+    First (nothing computed, nothing written): the size is stated on stderr (with ``progress``)
+    and checked against :data:`LIMITS` -- :class:`SweepTooLarge` unless ``yes`` --, then every
+    point is checked as a start -- :class:`verify.sweep.spec.InvalidPoint` naming the first bad
+    one.  Both are :class:`verify.sweep.spec.SpecError`.
+    """
     threads = threads or os.cpu_count() or 1
     t0 = time.monotonic()
+    cost = estimate(spec, threads)
+    if progress:
+        print(cost.describe(spec.name), file=sys.stderr, flush=True)
+    over = cost.over()
+    if over and not yes:
+        raise SweepTooLarge(f"sweep {spec.name!r} is too large: {'; '.join(over)}.  Check the axes' counts, "
+                            "[sweep] samples and chunk; to run it anyway pass yes=True (command line: --yes)", cost)
+    validate_points(spec)
     with Store(spec, store_path) as store:
         done = store.done_chunks()
         todo = [c for c in range(spec.n_chunks) if c not in done]
@@ -103,7 +228,7 @@ def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: 
             bar.close()
         rows = store.count()
     return SweepResult(spec, str(store_path or spec.store), spec.n_chunks, len(todo), len(done), rows,
-                       time.monotonic() - t0, where)
+                       time.monotonic() - t0, where, cost)
 
 
 def _run_on_dask(spec: SweepSpec, todo: list, address: str, store: Store, bar: Progress) -> str:

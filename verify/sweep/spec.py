@@ -46,9 +46,21 @@ Example (``verify/sweep/specs/disk-diameter-spin.toml`` ships with the package):
 ``h`` and the wall ``w`` (units of R) of an annular cylinder at every point
 (:func:`models.ring_dissipation.annulus_inertia`); ``w`` may then be an axis or a fixed value.
 
-Every run records ``outcome`` (``ok`` or the terminal event), ``t_stop`` (the event's time, or
-t_end) and ``energy_drift_vs_terms`` (max |E + W - E(0)| over the samples, relative to the largest sum of
-the magnitudes of the energy's terms; W is the work of a dissipative term, 0 otherwise).
+Every run records ``outcome`` (``ok``, the terminal event, or ``failed:<reason>`` -- see
+:mod:`verify.sweep.engine`), ``t_stop`` (the event's time, or t_end) and ``energy_drift_vs_terms``
+(max |E + W - E(0)| over the samples, relative to the largest sum of the magnitudes of the energy's
+terms; W is the work of a dissipative term, 0 otherwise).
+
+Validation
+----------
+Parsing checks the spec's layout, names and each fixed value (a ``[params]`` value, each end of a
+parameter axis) against the model's ranges, by :mod:`verify.validation`, the module ``solve``
+uses.  The axes are intervals and the ranges are intervals, so an axis whose two ends are in
+range has every value in range.  Every point of the grid is then checked as a whole start (the
+parameters together, theta in the domain, N > 0) by :func:`verify.sweep.engine.validate_points`
+before a store is created; see there why an invalid point refuses the sweep instead of being
+stored.  Axis values are computed on demand (:class:`AxisValues`), never as a list, so a spec with a
+typo in a count costs nothing until :mod:`verify.sweep.runner` refuses it by its size.
 """
 from __future__ import annotations
 
@@ -56,9 +68,12 @@ import hashlib
 import itertools
 import math
 import sys
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
+
+import numpy as np
 
 from models import ALL_NAMES, get_model
 from models.symbols import STATE_NAMES
@@ -88,10 +103,86 @@ class SpecError(ValueError):
     """A sweep specification that cannot be run; the message names the bad value and what is allowed."""
 
 
+class InvalidPoint(SpecError):
+    """A point of the grid that is not a valid start (``verify.validation``): the sweep is refused.
+
+    ``index`` is the first such point, ``point`` its axis values, ``reason`` one of
+    ``verify.validation.REASONS``, ``no_steady`` (``[start] steady`` has no such motion at that
+    rate) or ``below_stop`` (theta at or below ``[stop] theta_below``: the run would never stop).
+    """
+
+    def __init__(self, message: str, index: int, point: dict, reason: str):
+        super().__init__(message)
+        self.index, self.point, self.reason = index, point, reason
+
+
+class AxisValues(Sequence):
+    """The values of an axis, each computed when asked for (no list of them is ever built).
+
+    Value j is exactly what the former tuple held: linear ``lo + (hi - lo) * j / (count - 1)``,
+    geometric ``lo * (hi / lo) ** (j / (count - 1))``, the ends exactly as written.
+    """
+
+    __slots__ = ("lo", "hi", "count", "scale")
+
+    def __init__(self, lo: float, hi: float, count: int, scale: str):
+        self.lo, self.hi, self.count, self.scale = lo, hi, count, scale
+
+    def __len__(self) -> int:
+        return self.count
+
+    def value(self, j: int) -> float:
+        lo, hi, count = self.lo, self.hi, self.count
+        if count == 1:
+            return lo
+        if j == count - 1:
+            return hi
+        if self.scale == "linear":
+            return lo + (hi - lo) * j / (count - 1)
+        return lo if j == 0 else lo * (hi / lo) ** (j / (count - 1))
+
+    def __getitem__(self, j):
+        if isinstance(j, slice):
+            return tuple(self.value(i) for i in range(*j.indices(self.count)))
+        j = int(j)
+        if j < 0:
+            j += self.count
+        if not 0 <= j < self.count:
+            raise IndexError(f"axis value {j} of {self.count}")
+        return self.value(j)
+
+    def take(self, js) -> np.ndarray:
+        """The values at the indices ``js`` (an integer array), each computed once."""
+        js = np.asarray(js, dtype=np.int64)
+        uniq, inverse = np.unique(js, return_inverse=True)
+        return np.array([self.value(int(j)) for j in uniq], dtype=float)[inverse.reshape(js.shape)]
+
+    @property
+    def extremes(self) -> tuple:
+        """(smallest, largest) value: the ends (the axis is monotone)."""
+        return (min(self.lo, self.hi), max(self.lo, self.hi))
+
+    def __array__(self, dtype=None, copy=None):
+        return np.array([self.value(j) for j in range(self.count)], dtype=dtype)
+
+    def __eq__(self, other):
+        if isinstance(other, AxisValues):
+            return (self.lo, self.hi, self.count, self.scale) == (other.lo, other.hi, other.count, other.scale)
+        if isinstance(other, (tuple, list)):
+            return len(other) == self.count and all(a == b for a, b in zip(self, other))
+        return NotImplemented
+
+    def __hash__(self):
+        return hash((self.lo, self.hi, self.count, self.scale))
+
+    def __repr__(self) -> str:
+        return f"AxisValues(from={self.lo!r}, to={self.hi!r}, count={self.count}, scale={self.scale!r})"
+
+
 @dataclass(frozen=True)
 class Axis:
     name: str
-    values: tuple
+    values: AxisValues
     scale: str
 
 
@@ -134,6 +225,15 @@ class SweepSpec:
         for axis in reversed(self.axes):
             index, j = divmod(index, len(axis.values))
             out[axis.name] = axis.values[j]
+        return {a.name: out[a.name] for a in self.axes}
+
+    def columns(self, indices) -> dict:
+        """Axis name -> float array of its values at the points ``indices`` (as :meth:`point`)."""
+        rest = np.asarray(indices, dtype=np.int64)
+        out = {}
+        for axis in reversed(self.axes):
+            rest, j = np.divmod(rest, len(axis.values))
+            out[axis.name] = axis.values.take(j)
         return {a.name: out[a.name] for a in self.axes}
 
     def chunk_points(self, chunk: int) -> range:
@@ -188,6 +288,7 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
             raise SpecError(f"{where}: [params] {key} is not a parameter of {model_name!r}; allowed: "
                             f"{', '.join(sorted(settable))}")
         params[key] = _number(value, f"[params] {key}", where)
+        _in_range(model, key, params[key], value, f"[params] {key} = {value!r}", where)
 
     start_table = dict(_table(data, "start", where))
     steady = start_table.pop("steady", None)
@@ -269,14 +370,23 @@ def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) 
         raise SpecError(f"{where}: [[axis]] {name} scale = {scale!r}; allowed: linear, log")
     if scale == "log" and not (lo > 0 and hi > 0):
         raise SpecError(f"{where}: [[axis]] {name}: a log axis needs positive ends; got from = {lo}, to = {hi}")
-    if count == 1:
-        values = (lo,)
-    elif scale == "linear":
-        values = tuple(hi if j == count - 1 else lo + (hi - lo) * j / (count - 1) for j in range(count))
-    else:  # geometric, with the ends exactly as written
-        values = tuple(lo if j == 0 else hi if j == count - 1 else lo * (hi / lo) ** (j / (count - 1))
-                       for j in range(count))
-    return Axis(name, values, scale)
+    model = get_model(model_name)
+    for end, raw in (("from", ax.get("from")), ("to", ax.get("to"))):  # monotone axis: its ends bound it
+        _in_range(model, name, lo if end == "from" else hi, raw, f"[[axis]] {name} {end} = {raw!r}", where)
+    # geometric axes keep their ends exactly as written (AxisValues.value)
+    return Axis(name, AxisValues(lo, hi, count, scale), scale)
+
+
+def _in_range(model, name: str, value: float, raw, what: str, where: str) -> None:
+    """A fixed value or an axis end of a model parameter against its range (verify.validation)."""
+    from ..validation import InvalidStart, check_parameter_value
+
+    if name not in model.parameter_names:
+        return
+    try:
+        check_parameter_value(model, name, value, shown=raw)
+    except InvalidStart as err:
+        raise SpecError(f"{where}: {what}: {err}") from None
 
 
 def _only(table: dict, allowed: set, where: str) -> None:
@@ -331,5 +441,5 @@ def _count(value, what: str, where: str, minimum: int) -> int:
 
 
 def product(spec: SweepSpec):
-    """Every point of the sweep in index order (for small sweeps and tests)."""
+    """Every point of the sweep in index order, one at a time (itertools.product of the lazy axes)."""
     return itertools.product(*(a.values for a in spec.axes))
