@@ -1,6 +1,10 @@
+"""``python -m verify``: the command line (verify/cli.py), quiet on Ctrl-C even while importing."""
 import sys
 
-from .cli import main
-
 if __name__ == "__main__":
+    try:
+        from .cli import main
+    except KeyboardInterrupt:  # Ctrl-C while sympy, heyoka, ... load
+        print("error: interrupted (Ctrl-C)", file=sys.stderr)
+        sys.exit(130)
     sys.exit(main())
