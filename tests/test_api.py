@@ -236,3 +236,26 @@ def test_a_tolerance_of_one_or_more_is_refused(tol):
 def test_the_epsilon_itself_is_a_valid_tolerance_and_the_default():
     eps = parse_precision("double").eps
     assert solve("disk", "0.1", START, tol=eps, n_eval=3).tol == solve("disk", "0.1", START, n_eval=3).tol == eps
+
+
+@pytest.mark.parametrize("flag", ["events", "high_accuracy"])
+@pytest.mark.parametrize("value", ["yes", 1, None])
+def test_switches_take_true_or_false_only(flag, value):
+    with pytest.raises(ValueError, match=rf"{flag}={value!r}: allowed: True or False"):
+        solve("disk", "1", START, **{flag: value})
+
+
+def test_a_start_whose_energy_overflows_the_precision_is_refused():
+    """psidot = 1e200 is a finite double, but I3 psidot^2 / 2 is not: refused before heyoka's first step.
+    In quad (exponent range to 1e4932) the same start is valid."""
+    with pytest.raises(InvalidStart, match=r"has energy = inf: its values overflow double") as err:
+        solve("disk", "1", {"theta": "1.2", "psidot": "1e200"})
+    assert err.value.reason == "non_finite"
+    from verify.validation import validate
+    validate(get_model("disk"), {"theta": "1.2", "psidot": "1e200"}, None, parse_precision("quad"))
+
+
+def test_rates_too_fast_for_the_precision_fail_as_non_finite_naming_the_last_good_time():
+    with pytest.raises(IntegrationError, match=r"failed after t = 0: heyoka reached a non-finite state") as err:
+        solve("disk", "1", {"theta": "1.2", "psidot": "1e100"})
+    assert err.value.outcome == "failed:non_finite"

@@ -409,6 +409,9 @@ def solve(
     t_end = _parse_positive("t_end", t_end, prec)
     tol_value = prec.zero() if tol is None else _parse_tolerance(tol, prec)
     grid, with_start = _grid(t_end, t_eval, n_eval, prec)
+    for flag, value in (("events", events), ("high_accuracy", high_accuracy)):
+        if not isinstance(value, (bool, np.bool_)):
+            raise ValueError(f"{flag}={value!r}: allowed: True or False")
     if progress is not None and not callable(progress):
         raise ValueError(f"progress={progress!r} is not callable; allowed: None or a function progress(t, steps)")
     y0, pars = validation.validate(model, state, params, prec)  # compiles the model only to check N
@@ -455,9 +458,9 @@ def _failure(model: Model, compiled, run: _Run, t, y, pars, events: bool, messag
     finite = np.array([all(math.isfinite(float(v)) for v in col) for col in y.T])
     if run.outcome == hy.taylor_outcome.err_nf_state or not finite.all():
         k = int(np.argmin(finite)) if not finite.all() else len(finite) - 1
-        return ("failed:non_finite", k, f"the integration of {name!r} failed at t = {float(t[k]):.9g}: heyoka "
-                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = "
-                f"{float(t[max(k - 1, 0)]):.9g}")
+        last = float(t[max(k - 1, 0)])
+        return ("failed:non_finite", k, f"the integration of {name!r} failed after t = {last:.9g}: heyoka "
+                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = {last:.9g}")
     if run.collapsed:
         k = len(t) - 1
         return ("failed:step_size_collapse", k, f"the integration of {name!r} failed at t = {float(t[k]):.9g}: the "

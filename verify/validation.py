@@ -195,7 +195,7 @@ def start_problems(model: Model, states, normal=None, shown=None):
     if normal is not None:
         nf = np.array([float(v) for v in np.asarray(normal).ravel()])
         with np.errstate(invalid="ignore"):
-            low = ~(nf > 0)
+            low = ~((nf > 0) & np.isfinite(nf))
         add(np.flatnonzero(low), "normal_force",
             lambda j: (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]:.6g} <= 0: the body "
                        "would leave the plane; allowed: states with N > 0") if math.isfinite(nf[j]) else
@@ -241,15 +241,34 @@ def first_problem(model: Model, states, normal=None, shown=None):
 
 # --- one start at a run's precision (solve) --------------------------------------------------------
 
+def _invariant_rows(compiled, y: np.ndarray, pars: dict) -> np.ndarray:
+    prec = compiled.precision
+    n = y.shape[1]
+    p = np.ascontiguousarray(np.repeat(compiled.function_pars(prec.array(pars.values()))[:, None], n, axis=1))
+    return compiled.invariant_function(np.ascontiguousarray(y), pars=p)
+
+
 def normal_force(compiled, y: np.ndarray, pars: dict):
     """N/(Mg) at each column of ``y`` from the compiled model's own cfunc (None: no contact)."""
     if not compiled.has_normal_force:
         return None
-    prec = compiled.precision
-    n = y.shape[1]
-    p = np.ascontiguousarray(np.repeat(compiled.function_pars(prec.array(pars.values()))[:, None], n, axis=1))
-    out = compiled.invariant_function(np.ascontiguousarray(y), pars=p)
-    return out[compiled.n_invariants]
+    return _invariant_rows(compiled, y, pars)[compiled.n_invariants]
+
+
+def _overflowing_invariant(model: Model, compiled, y0: np.ndarray, pars: dict):
+    """The first invariant (energy, ...) that is not finite at the start, as (name, value), or None.
+
+    Finite state values can still overflow the precision in the invariants (psidot = 1e200 in
+    double: I3 psidot^2 / 2 = inf); heyoka would then fail at its first step.
+    """
+    rows = _invariant_rows(compiled, y0[:, None].copy(), pars)
+    for inv, row in zip(model.invariants, rows):
+        v = row[0]
+        with np.errstate(invalid="ignore"):  # inf - inf
+            finite = v - v == 0  # at the precision's own range (float(v) would overflow quad's)
+        if not finite:
+            return inv.name, row[0]
+    return None
 
 
 def validate(model: Model, state_values, params, precision: Precision, compiled=None):
@@ -262,12 +281,18 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
     y0 = state(model, state_values, precision)
     shown = [dict(state_values)] if isinstance(state_values, Mapping) else None
     problem = first_problem(model, y0[:, None], None, shown)
-    if problem is None and model.normal_force is not None:
+    if problem is None:
         if compiled is None:
             from .compile import compile_model
 
             compiled = compile_model(model, precision)
-        problem = first_problem(model, y0[:, None], normal_force(compiled, y0[:, None].copy(), pars), shown)
+        overflow = _overflowing_invariant(model, compiled, y0, pars)
+        if overflow is not None:
+            raise InvalidStart(f"the initial state of {model.name!r} has {overflow[0]} = {overflow[1]}: its values "
+                               f"overflow {precision.name}; allowed: states whose invariants are finite (smaller "
+                               "rates, or mp:BITS)", "non_finite")
+        if model.normal_force is not None:
+            problem = first_problem(model, y0[:, None], normal_force(compiled, y0[:, None].copy(), pars), shown)
     if problem is not None:
         raise InvalidStart(problem[2], problem[1])
     return y0, pars
