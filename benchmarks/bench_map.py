@@ -12,7 +12,7 @@ ratios, not seconds), the same work done
 * by plain Python threads that each reuse one batch integrator for a contiguous share of the
   batches: what heyoka's ensemble costs by deep-copying the integrator for every batch (a
   copy takes ~0.8 ms and holds the GIL, so copies do not overlap);
-* with the step cap of ``verify.integrate.max_step`` (1 / fastest rate; the map runs without:
+* with the step cap of ``verify.engine.single.max_step`` (1 / fastest rate; the map runs without:
   does the cap cost or change anything?).
 
 The scalar and serial-batch subsets are checked against the map's own numbers.  Not a

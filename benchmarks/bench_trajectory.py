@@ -22,8 +22,8 @@ import numpy as np
 
 from models import get_model
 from verify import solve
-from verify.compile import compile_model
-from verify.integrate import resolve_parameters, resolve_state
+from verify.engine.compile import compile_model
+from verify.engine.single import resolve_parameters, resolve_state
 from verify.precision import parse_precision
 from verify.standard import STANDARD_STATES
 

@@ -3,7 +3,7 @@
 A model is data plus expressions, in the manner of heyoka's own ``model`` module: the
 right-hand side, the energy, the other invariants and the normal force are sympy
 expressions in the state symbols of :mod:`models.symbols` and the parameter symbols
-below.  :mod:`verify.compile` turns them into heyoka expressions with the parameters as
+below.  :mod:`verify.engine.compile` turns them into heyoka expressions with the parameters as
 runtime ``par[i]``, so a sweep over parameters needs no recompilation.
 """
 from __future__ import annotations

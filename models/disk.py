@@ -37,7 +37,7 @@ def chaplygin_closed_form(theta, omega2, omega3, params):
     a + b = 1/2, a b = lam/4.  With omega3 = A w_e + B w_o the constants are the values
     at theta = pi/2: omega3(pi/2) = A, omega2(pi/2) = -(2k+1) B.  Returned as
     (chaplygin_1, chaplygin_2) = (omega2, omega3) transported to theta = pi/2, the same
-    numbers the fundamental-matrix route of :mod:`verify.invariants` computes.
+    numbers the fundamental-matrix route of :mod:`verify.engine.invariants` computes.
 
     All arguments are mpmath numbers; the working precision is the caller's.
     """

@@ -11,11 +11,12 @@ import sympy as sp
 
 from models import get_model
 from models.symbols import STATE_NAMES, theta, thetadot, x
-from verify import IntegrationError, integrate, solve
-from verify.heyoka_log import collect
+from verify import IntegrationError, solve
+from verify.engine import single as integrate
+from verify.engine.heyoka_log import collect
 from verify.precision import MIN_MPFR_BITS, parse_precision
 from verify.standard import STANDARD_STATES
-from verify.validation import InvalidStart
+from verify.engine.validation import InvalidStart
 
 START = {"theta": "1.2", "psidot": "10", "phidot": "0.5"}
 VECTOR = [1.2, 0.0, 0.0, 0.0, 0.5, 10.0, 0.0, 0.0]
@@ -251,7 +252,7 @@ def test_a_start_whose_energy_overflows_the_precision_is_refused():
     with pytest.raises(InvalidStart, match=r"has energy = inf: its values overflow double") as err:
         solve("disk", "1", {"theta": "1.2", "psidot": "1e200"})
     assert err.value.reason == "non_finite"
-    from verify.validation import validate
+    from verify.engine.validation import validate
     validate(get_model("disk"), {"theta": "1.2", "psidot": "1e200"}, None, parse_precision("quad"))
 
 

@@ -155,7 +155,7 @@ def test_heyoka_lagrangian_agrees(name):
     import heyoka as hy
     import numpy as np
 
-    from verify.compile import symbol_map, to_heyoka
+    from verify.engine.compile import symbol_map, to_heyoka
 
     model = get_model(name)
     I1, I3 = model.parameters[0].symbol, model.parameters[1].symbol

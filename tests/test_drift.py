@@ -18,7 +18,7 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE
 from verify import solve
-from verify.invariants import NEGLIGIBLE_INITIAL, trace
+from verify.engine.invariants import NEGLIGIBLE_INITIAL, trace
 from verify.precision import parse_precision
 
 README_RUN = dict(model="disk", t_end="2", state={"theta": "1.2", "psidot": "10"}, precision="quad")

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from verify.lanes import ENV, simd_width
+from verify.engine.lanes import ENV, simd_width
 from verify.studies import maps
 
 RATES = np.array([0.8, 0.95, 1.05, 1.25]) * np.sqrt(980.0 / 1.25)  # around the disk's diameter-spin threshold 28

@@ -1,6 +1,6 @@
 """Stability maps (verify/studies/maps.py): batch + ensemble runs against independent routes.
 
-* Point by point against ``verify.integrate.solve``: the full 8-dimensional derived equations,
+* Point by point against ``verify.engine.single.solve``: the full 8-dimensional derived equations,
   one scalar integrator per point, with solve's own segments and step cap, from the same
   double initial state.  The classification must be the same, and so must the time a run
   leaves (to one sample).  For runs that stay, the maxima over the same sample times differ by
@@ -32,8 +32,8 @@ import numpy as np
 import pytest
 
 from models import get_model
-from verify.compile import compile_model
-from verify.integrate import max_step, resolve_parameters, resolve_state, solve
+from verify.engine.compile import compile_model
+from verify.engine.single import max_step, resolve_parameters, resolve_state, solve
 from verify.precision import parse_precision
 from verify.studies import maps
 from verify.studies.thresholds import GROWTH, steady_state

@@ -10,7 +10,7 @@ import pytest
 
 from models import MODEL_NAMES
 from verify import parse_precision, solve
-from verify.conditioning import transition_norms
+from verify.engine.conditioning import transition_norms
 from verify.standard import STANDARD_STATES
 
 

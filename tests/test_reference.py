@@ -16,7 +16,7 @@ import pytest
 
 from models import MODEL_NAMES
 from verify.cli import main
-from verify.integrate import solve
+from verify.engine.single import solve
 from verify.precision import parse_precision
 from verify.reference import DIRECTORY, check_case, check_set, load_set
 from verify.reference.cases import cases

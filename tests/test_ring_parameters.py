@@ -17,7 +17,7 @@ import pytest
 import sympy as sp
 
 from models import get_model, ring
-from verify.integrate import solve
+from verify.engine.single import solve
 
 
 def _fraction(v) -> Fraction:

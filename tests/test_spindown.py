@@ -14,7 +14,7 @@ import sympy as sp
 
 from models import get_model
 from verify.cli import main
-from verify.integrate import solve
+from verify.engine.single import solve
 from verify.studies.spindown import spindown
 
 

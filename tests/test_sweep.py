@@ -19,7 +19,7 @@ import pytest
 import sympy as sp
 
 from verify.cli import main
-from verify.integrate import solve
+from verify.engine.single import solve
 from verify.sweep import SPECS, SpecError, Store, StoreError, load, parse, run_sweep
 from verify.sweep.engine import senses
 

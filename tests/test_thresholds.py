@@ -17,7 +17,7 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE, phidot, psidot, theta, thetadot
 from verify.cli import main
-from verify.integrate import solve
+from verify.engine.single import solve
 from verify.studies.thresholds import threshold
 
 

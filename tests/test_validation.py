@@ -18,7 +18,7 @@ from verify.sweep import (
 )
 from verify.sweep import engine
 from verify.sweep.plot import grid_of
-from verify.validation import InvalidStart
+from verify.engine.validation import InvalidStart
 
 SPEC = """
 [sweep]
@@ -149,7 +149,7 @@ def test_a_reference_case_and_a_study_go_through_the_same_check():
 
 def _old_lane_inputs(spec, indices):
     """The engine's inputs as computed before validation (point by point), kept as the reference."""
-    from verify.integrate import resolve_parameters
+    from verify.engine.single import resolve_parameters
     from verify.precision import parse_precision
     from verify.sweep.engine import _steady_cached
     from verify.sweep.spec import RATE_AXIS

@@ -11,7 +11,7 @@ negligible against the magnitudes of I's terms); ``max_drift_vs_terms`` = that /
 sum of those magnitudes along the run (``max_drift_vs_terms_in_eps`` in units of epsilon; on
 this run 3.0e-35 = 0.16 eps: the disk's |E| is 0.006 of its term scale).
 """
-from .integrate import IntegrationError, InvariantTrace, Trajectory, solve
+from .engine.single import IntegrationError, InvariantTrace, Trajectory, solve
 from .precision import Precision, parse_precision
 
 __all__ = ["IntegrationError", "InvariantTrace", "Precision", "Trajectory", "parse_precision", "solve"]

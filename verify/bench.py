@@ -49,8 +49,8 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE, STATE_NAMES
 
-from .compile import compile_model
-from .integrate import max_step, resolve_parameters, resolve_state, solve
+from .engine.compile import compile_model
+from .engine.single import max_step, resolve_parameters, resolve_state, solve
 from .precision import parse_precision
 from .provenance import write_atomic
 
@@ -494,7 +494,7 @@ t0 = time.perf_counter()
 import heyoka as hy
 t_import = time.perf_counter() - t0
 from models import get_model
-from verify.compile import compile_model
+from verify.engine.compile import compile_model
 from verify.precision import parse_precision
 t0 = time.perf_counter()
 model = get_model("disk")

@@ -22,7 +22,7 @@ import time
 from models import ALL_NAMES, get_model, sources
 from models.symbols import STATE_NAMES
 
-from .integrate import IntegrationError, solve
+from .engine.single import IntegrationError, solve
 from .precision import FIXED, parse_precision
 
 # --- minimum MPFR precision -----------------------------------------------------------------
@@ -164,7 +164,7 @@ def trajectory_record(sol) -> dict:
 
 
 def _drifts(p, tr) -> dict:
-    """initial, final and the drifts of one invariant (verify.invariants.InvariantTrace); an
+    """initial, final and the drifts of one invariant (verify.engine.invariants.InvariantTrace); an
     undefined ratio (NaN: I(0) negligible, or a zero term scale) is null."""
     def ratio(x):
         return None if math.isnan(x) else x
@@ -341,7 +341,7 @@ def cmd_trajectory(args, session: Session) -> int:
     record = trajectory_record(sol)
     failure = _not_ok(sol, model)
     if failure is not None and record["outcome"] in ("ok",):
-        # the integrator's own names for these (verify.integrate.FAILURES)
+        # the integrator's own names for these (verify.engine.single.FAILURES)
         record["outcome"] = "failed:event_detection" if "domain" in failure else "failed:non_finite"
     session.emit(_dumps(record) if args.format == "json" else _text(record))
     if failure is not None:

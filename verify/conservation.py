@@ -5,7 +5,7 @@ and into the report's conservation section.  Each row is a 10 s run
 from the model's standard state; for every invariant it gives max |I(t) - I(0)|
 (``max_abs_drift``), that over |I(0)| (``max_rel_drift``, null where I(0) is negligible) and
 over the largest sum of the magnitudes of I's terms (``max_drift_vs_terms``, also in units of
-the precision's epsilon): see :class:`verify.invariants.InvariantTrace`.
+the precision's epsilon): see :class:`verify.engine.invariants.InvariantTrace`.
 """
 from __future__ import annotations
 
@@ -16,8 +16,8 @@ import time
 
 from models import MODEL_NAMES, sources
 
-from .integrate import solve
-from .invariants import NEGLIGIBLE_INITIAL
+from .engine.single import solve
+from .engine.invariants import NEGLIGIBLE_INITIAL
 from .provenance import provenance, write_atomic
 from .standard import STANDARD_STATES
 

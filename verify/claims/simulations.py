@@ -26,7 +26,7 @@ from models import get_model
 from models.ring import parameter_set
 from verify.behaviour import both_sides, leaves, one_side, oscillates, spirals_out
 from verify.circling import circling
-from verify.integrate import solve
+from verify.engine.single import solve
 
 from .base import RESULT, Claim, Evaluation, FigureData, RunData, decide, definition, qualify, undecided
 

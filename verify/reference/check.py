@@ -36,7 +36,7 @@ import sympy as sp
 
 from models.symbols import STATE_NAMES
 
-from ..integrate import solve
+from ..engine.single import solve
 from ..precision import parse_precision
 from .make import equations_fingerprint
 from .store import reduced_scale

@@ -4,7 +4,7 @@
 ``LOW`` and ``HIGH`` bits (processes in parallel, one case-precision per task), certifies
 each value of the state and of every invariant on the output grid
 (:mod:`verify.reference.certify`), measures the conditioning of the flow with the
-variational equations (:func:`verify.conditioning.sensitivities`), and writes one JSON file
+variational equations (:func:`verify.engine.conditioning.sensitivities`), and writes one JSON file
 per case with :mod:`verify.reference.store`.
 """
 from __future__ import annotations
@@ -20,8 +20,8 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE, STATE_NAMES
 
-from ..conditioning import sensitivities
-from ..integrate import solve
+from ..engine.conditioning import sensitivities
+from ..engine.single import solve
 from ..precision import parse_precision
 from .cases import ReferenceCase, case
 from .certify import certify

@@ -70,10 +70,10 @@ from models.dissipative import LAW_NAMES, c as C_SYMBOL, dissipative_disk, law a
 from models.rolling import derive
 from models.symbols import STATE_NAMES, g, phidot, psidot, theta, thetadot
 
-from .. import invariants as inv
-from .. import validation
-from ..compile import compile_model, symbol_map, to_heyoka
-from ..integrate import IntegrationError, max_step, resolve_parameters
+from ..engine import invariants as inv
+from ..engine import validation
+from ..engine.compile import compile_model, symbol_map, to_heyoka
+from ..engine.single import IntegrationError, max_step, resolve_parameters
 from ..precision import parse_precision
 from .spindown import spindown
 
@@ -94,7 +94,7 @@ A_MAX = 1e-3
 FIT_TOP = 0.05
 LEVELS_PER_DECADE = 40
 #: Rebase phi, psi by whole turns after this many radians (keeps them below the rates,
-#: so they never loosen heyoka's step-size control; see verify.integrate).
+#: so they never loosen heyoka's step-size control; see verify.engine.single).
 _SEGMENT_RADIANS = 32 * math.pi
 
 
@@ -462,8 +462,8 @@ def integrate_with_work(name: str, t_eval, c=None, state=None, *, params=None, t
 def _advance(ta, grid, h_max, prec):
     """Propagate through ``grid`` in segments of ~_SEGMENT_RADIANS of the fastest rate,
     moving whole turns of phi and psi out of the state between segments (as
-    :func:`verify.integrate.solve` does, for the same reason); steps at most ``h_max``
-    (:func:`verify.integrate.max_step`: the start is an exactly steady motion).
+    :func:`verify.engine.single.solve` does, for the same reason); steps at most ``h_max``
+    (:func:`verify.engine.single.max_step`: the start is an exactly steady motion).
 
     Returns (outcome, steps, times, rows), rows with phi, psi continuous; if an event
     stopped the run its state is the last row."""

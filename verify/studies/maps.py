@@ -14,7 +14,7 @@ right-hand side of these four), so the map integrates the reduced 4-dimensional 
 How it runs
 -----------
 * The reduced system is compiled once per model in double as a ``taylor_adaptive_batch``
-  (batch size twice :func:`verify.lanes.simd_width`: two SIMD registers a lane group; measured on
+  (batch size twice :func:`verify.engine.lanes.simd_width`: two SIMD registers a lane group; measured on
   a 2-core AVX2 machine, 10^4 disk runs take 7.2 s with 8 lanes and 9.0 s with 4, bit for bit the
   same results), parameters as runtime ``par[i]``: the model's
   parameters in model order, then five per-lane bookkeeping parameters (alive, reason,
@@ -66,7 +66,7 @@ from models import get_model
 from models.symbols import phidot, psidot, theta, thetadot
 
 from . import thresholds
-from ..lanes import simd_width
+from ..engine.lanes import simd_width
 
 MOTIONS = thresholds.MOTIONS
 GROWTH = thresholds.GROWTH
@@ -193,7 +193,7 @@ def reduced_system(name: str):
     ``(name, expression, direction)`` -- theta at the lower and upper bound (runtime
     parameters), and the normal force where the model has a contact.
     """
-    from verify.compile import to_heyoka
+    from verify.engine.compile import to_heyoka
 
     model = get_model(name)
     variables = hy.make_vars("theta", "thetadot", "phidot", "psidot")
@@ -357,7 +357,7 @@ class Runs:
 def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: dict, cap: float,
                  step_cap: bool, batch_size: int) -> Runs:
     """Initial states, per-lane parameters, sample times and step cap of a map (inputs validated)."""
-    from verify.integrate import resolve_parameters
+    from verify.engine.single import resolve_parameters
     from verify.precision import parse_precision
 
     from verify import validation
@@ -463,7 +463,7 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
         Deviation (rad) at which a run counts as left.
     step_cap : bool
         Cap the step at 1 / max(fastest rate of the map, sqrt(g)), like
-        :func:`verify.integrate.max_step`.  Off by default: measured on the 100 x 100 disk
+        :func:`verify.engine.single.max_step`.  Off by default: measured on the 100 x 100 disk
         map it changes no classification, moves max deviations of non-growing runs by at
         most 3e-9 (relative; round-off carried by the flow's conditioning) and takes 44%
         more steps (10-30% more wall time).  The cap guards against steps fooled by the
@@ -471,7 +471,7 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
         8-dimensional system bite through x and y; the reduced system has no such component,
         and every run here starts perturbed (tilt > 0).
     batch_size : int, optional
-        Lanes per batch (default ``2 * verify.lanes.simd_width()``, see the module docstring).
+        Lanes per batch (default ``2 * verify.engine.lanes.simd_width()``, see the module docstring).
 
     Returns
     -------
@@ -487,7 +487,7 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
     """
     _check_motion(model, motion)
     params = dict(params or {})
-    from verify.integrate import resolve_parameters
+    from verify.engine.single import resolve_parameters
     from verify.precision import parse_precision
 
     resolve_parameters(get_model(model), params, parse_precision("double"))  # names and ranges, before sympy

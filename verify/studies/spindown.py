@@ -65,7 +65,7 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
         raise ValueError(f"unknown family {family!r}; allowed: {', '.join(FAMILIES)}")
     model = get_model(name)
     params = dict(params or {})
-    from verify.integrate import resolve_parameters
+    from verify.engine.single import resolve_parameters
     from verify.precision import parse_precision
 
     resolve_parameters(model, params, parse_precision("double"))  # names and ranges
@@ -194,7 +194,7 @@ def _omega3(y):
 def precision_runs(label: str, state: dict, precisions=PRECISIONS, turns: int = TURNS) -> list:
     """Integrate ``state`` (decimal strings, disk) for ``turns`` turns of phi at every precision and
     compare the final state with a reference at REFERENCE; one PrecisionRun per precision."""
-    from verify.integrate import solve
+    from verify.engine.single import solve
 
     with mpmath.workdps(80):
         t_end = mpmath.nstr(2 * mpmath.pi * turns / abs(mpmath.mpf(state["phidot"])), 40)

@@ -209,7 +209,7 @@ def _verdict(caption_stable: bool, linearly_stable: bool, rate, crit) -> str:
 
 def caption_rows() -> list:
     """The captions of Figs. 5, 10, 11, 18, 19 against the exact thresholds (and Olsson's)."""
-    from verify.integrate import solve
+    from verify.engine.single import solve
 
     from .thresholds import linear_deviation, steady_state
 

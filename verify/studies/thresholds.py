@@ -124,7 +124,7 @@ def threshold(name: str, motion: str, params: Optional[dict] = None, dps: int = 
     unknown = set(params) - set(model.parameter_names)
     if unknown:
         raise ValueError(f"unknown parameter {sorted(unknown)[0]!r}; allowed: {', '.join(model.parameter_names)}")
-    from verify.integrate import resolve_parameters
+    from verify.engine.single import resolve_parameters
     from verify.precision import parse_precision
 
     values = resolve_parameters(model, params, parse_precision("double"))  # validates ranges
@@ -337,7 +337,7 @@ def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
     of the family); the deviation is measured from the unperturbed steady angle on the grid of
     :func:`linear_deviation` (401 points), in double.
     """
-    from verify.integrate import solve
+    from verify.engine.single import solve
 
     state = steady_state(name, motion, rate, params)
     with mpmath.workdps(40):
@@ -498,8 +498,8 @@ def variational_w2(name: str, motion: str, rate, params=None, precision: str = "
     import heyoka as hy
     import numpy as np
 
-    from verify.compile import compile_model
-    from verify.integrate import max_step, resolve_parameters, resolve_state
+    from verify.engine.compile import compile_model
+    from verify.engine.single import max_step, resolve_parameters, resolve_state
     from verify.precision import parse_precision
 
     if motion == "sleeping":

@@ -24,7 +24,7 @@ worker, whatever ran before it.
 Validation and failures
 -----------------------
 Every point of the grid is checked as a start (:func:`validate_points`, by
-:mod:`verify.validation`, as ``solve`` checks one) before the store is created, and the first
+:mod:`verify.engine.validation`, as ``solve`` checks one) before the store is created, and the first
 invalid point refuses the whole sweep (:class:`verify.sweep.spec.InvalidPoint`, naming it).  Why
 refuse rather than store ``invalid:<reason>`` rows: an invalid point is a start that does not
 exist (theta outside the domain, N <= 0: the body is already off the plane, a parameter out of
@@ -40,7 +40,7 @@ quantities (white on a map, never data), as in ``solve``:
 
 * ``failed:non_finite`` -- heyoka stopped the lane on a non-finite state, or a sample is not finite;
 * ``failed:event_detection`` -- heyoka warned that event detection failed in the lane
-  (:mod:`verify.heyoka_log`), or a sample before the lane's stop lies outside the domain, below
+  (:mod:`verify.engine.heyoka_log`), or a sample before the lane's stop lies outside the domain, below
   ``[stop] theta_below``, or at N <= 0, without the event that should have stopped it there;
 * ``failed:step_size_collapse`` -- the run needed more than COLLAPSE_FACTOR (t_end x the fastest
   initial rate) steps, i.e. its steps averaged below 2^-15 of the step cap, as in ``solve``.
@@ -65,11 +65,13 @@ from models import get_model
 from models.ring_dissipation import annulus_inertia
 from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
 
-from .. import heyoka_log, validation
+from ..engine import heyoka_log
+
+from ..engine import validation
 from ..circling import circling, theta_maxima
-from ..compile import to_heyoka
-from ..integrate import COLLAPSE_FACTOR
-from ..lanes import simd_width
+from ..engine.compile import to_heyoka
+from ..engine.single import COLLAPSE_FACTOR
+from ..engine.lanes import simd_width
 from ..precision import parse_precision
 from .spec import SENSE_KEYS, InvalidPoint, SweepSpec
 
@@ -266,7 +268,7 @@ def _steady_cached(model: str, motion: str, rate: str, params: tuple) -> dict:
 def point_problems(spec: SweepSpec, indices) -> list:
     """[(index, reason, message)] of the points ``indices`` that are not valid starts, in index order.
 
-    The checks of :mod:`verify.validation` (the parameters together, finite, theta in the
+    The checks of :mod:`verify.engine.validation` (the parameters together, finite, theta in the
     domain, the model's constraints, N > 0), plus theta above ``[stop] theta_below``.
     """
     idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)

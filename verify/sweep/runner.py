@@ -101,7 +101,7 @@ class Estimate:
 
 def estimate(spec: SweepSpec, threads: int = None) -> Estimate:
     """Points, memory per chunk, store size and a rough time of ``spec``, from its text alone."""
-    from ..lanes import simd_width
+    from ..engine.lanes import simd_width
     from models import get_model
 
     threads = threads or os.cpu_count() or 1

@@ -54,7 +54,7 @@ terms; W is the work of a dissipative term, 0 otherwise).
 Validation
 ----------
 Parsing checks the spec's layout, names and each fixed value (a ``[params]`` value, each end of a
-parameter axis) against the model's ranges, by :mod:`verify.validation`, the module ``solve``
+parameter axis) against the model's ranges, by :mod:`verify.engine.validation`, the module ``solve``
 uses.  The axes are intervals and the ranges are intervals, so an axis whose two ends are in
 range has every value in range.  Every point of the grid is then checked as a whole start (the
 parameters together, theta in the domain, N > 0) by :func:`verify.sweep.engine.validate_points`
@@ -104,10 +104,10 @@ class SpecError(ValueError):
 
 
 class InvalidPoint(SpecError):
-    """A point of the grid that is not a valid start (``verify.validation``): the sweep is refused.
+    """A point of the grid that is not a valid start (``verify.engine.validation``): the sweep is refused.
 
     ``index`` is the first such point, ``point`` its axis values, ``reason`` one of
-    ``verify.validation.REASONS``, ``no_steady`` (``[start] steady`` has no such motion at that
+    ``verify.engine.validation.REASONS``, ``no_steady`` (``[start] steady`` has no such motion at that
     rate) or ``below_stop`` (theta at or below ``[stop] theta_below``: the run would never stop).
     """
 
@@ -378,8 +378,8 @@ def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) 
 
 
 def _in_range(model, name: str, value: float, raw, what: str, where: str) -> None:
-    """A fixed value or an axis end of a model parameter against its range (verify.validation)."""
-    from ..validation import InvalidStart, check_parameter_value
+    """A fixed value or an axis end of a model parameter against its range (verify.engine.validation)."""
+    from ..engine.validation import InvalidStart, check_parameter_value
 
     if name not in model.parameter_names:
         return

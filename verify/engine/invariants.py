@@ -21,7 +21,7 @@ from models.base import Model
 from models.symbols import STATE, theta
 
 from .compile import CompiledModel, to_heyoka
-from .precision import Precision
+from ..precision import Precision
 
 
 #: The relative drift is NaN where |I(0)| <= NEGLIGIBLE_INITIAL * eps * term scale: see

@@ -16,8 +16,8 @@ import numpy as np
 from models import get_model
 
 from .compile import compile_model
-from .integrate import max_step, resolve_parameters, resolve_state
-from .precision import parse_precision
+from .single import max_step, resolve_parameters, resolve_state
+from ..precision import parse_precision
 
 
 def _variational(model, t_eval, state, params, equations, with_params: bool):

@@ -32,7 +32,7 @@ import sympy as sp
 from models.base import Model
 from models.symbols import STATE, STATE_NAMES
 
-from .precision import Precision
+from ..precision import Precision
 
 #: Why a start is refused (``InvalidStart.reason``).
 REASONS = ("unknown_name", "not_a_number", "non_finite", "parameter_range", "parameter_relation", "shape",

@@ -30,7 +30,7 @@ left the domain is returned with ``outcome = "outside_domain"``, ``status = 2``:
 * ``failed:event_detection`` -- heyoka warned that its event detection failed (root finding gave
   up, or was skipped), or a state left the domain, or the normal force fell to N <= 0, without
   the terminal event that should have stopped the run there (heyoka's warnings are collected by
-  :mod:`verify.heyoka_log`, never printed);
+  :mod:`verify.engine.heyoka_log`, never printed);
 * ``failed:step_size_collapse`` -- a segment of 2 pi radians of the fastest initial rate took
   more than 2 pi :data:`COLLAPSE_FACTOR` steps (2e5; a segment typically takes ~200): the steps
   averaged less than 2^-15 of the step cap (:func:`max_step`), a thousandth of the typical step
@@ -63,7 +63,7 @@ from . import invariants as inv
 from . import validation
 from .compile import compile_model
 from .invariants import InvariantTrace
-from .precision import Precision, parse_precision
+from ..precision import Precision, parse_precision
 
 _CYCLIC = (1, 2, 6, 7)  # phi, psi, x, y
 _ANGLES = (1, 2)
@@ -113,7 +113,7 @@ class Trajectory:
     invariants : dict of name -> InvariantTrace
         Energy first, then the model's other conserved quantities; each with its values and
         ``max_abs_drift``, ``max_rel_drift`` (over |I(0)|) and ``max_drift_vs_terms`` (over
-        the magnitudes of I's terms), see :class:`verify.invariants.InvariantTrace`.
+        the magnitudes of I's terms), see :class:`verify.engine.invariants.InvariantTrace`.
     normal_force : ndarray or None
         N / (M g) on the grid (contact holds while it is positive).
     """
@@ -149,13 +149,13 @@ class Trajectory:
 
 def resolve_parameters(model: Model, values, precision: Precision) -> dict:
     """Every parameter of the model at ``precision``: defaults overridden by ``values``
-    (:func:`verify.validation.parameters`)."""
+    (:func:`verify.engine.validation.parameters`)."""
     return validation.parameters(model, values, precision)
 
 
 def resolve_state(model: Model, values, precision: Precision) -> np.ndarray:
     """The eight-component initial state (a mapping, or eight values in state order); unset
-    components are 0; theta must lie in the model's domain (:mod:`verify.validation`)."""
+    components are 0; theta must lie in the model's domain (:mod:`verify.engine.validation`)."""
     y0 = validation.state(model, values, precision)
     shown = [dict(values)] if isinstance(values, dict) else None
     problem = validation.first_problem(model, y0[:, None], None, shown)
@@ -396,7 +396,7 @@ def solve(
     ------
     ValueError
         For bad input (unknown names, non-finite values, out-of-range parameters, states
-        outside the domain or with N <= 0 -- :class:`verify.validation.InvalidStart` --,
+        outside the domain or with N <= 0 -- :class:`verify.engine.validation.InvalidStart` --,
         non-positive tolerance, bad grids, unknown precision).
     IntegrationError
         If the integration fails; ``outcome`` is one of :data:`FAILURES` (module docstring).

@@ -15,7 +15,7 @@ import sympy as sp
 from models.base import Model
 from models.symbols import STATE, STATE_NAMES, theta
 
-from .precision import Precision
+from ..precision import Precision
 
 
 def to_heyoka(expr: sp.Expr, mapping: dict):
