@@ -48,21 +48,20 @@ from __future__ import annotations
 import math
 import numbers
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import heyoka as hy
 import mpmath
 import numpy as np
 
-from models import get_model
 from models.base import Model
 from models.symbols import STATE_NAMES
 
-from . import heyoka_log
+from . import heyoka_log, integrators
 from . import invariants as inv
 from . import validation
-from .compile import compile_model
 from .invariants import InvariantTrace
+from .problem import Problem, max_step, resolve_model
 from ..precision import Precision, parse_precision
 
 _CYCLIC = (1, 2, 6, 7)  # phi, psi, x, y
@@ -110,12 +109,14 @@ class Trajectory:
         :class:`IntegrationError`'s partial record.
     steps : int
         Taylor steps taken.
-    invariants : dict of name -> InvariantTrace
+    invariants : dict of name -> InvariantTrace (property)
         Energy first, then the model's other conserved quantities; each with its values and
         ``max_abs_drift``, ``max_rel_drift`` (over |I(0)|) and ``max_drift_vs_terms`` (over
         the magnitudes of I's terms), see :class:`verify.engine.invariants.InvariantTrace`.
-    normal_force : ndarray or None
-        N / (M g) on the grid (contact holds while it is positive).
+        Evaluated when first read (Chaplygin's closed form costs milliseconds a point), then
+        kept; the drifts cover every output of the run.
+    normal_force : ndarray or None (property)
+        N / (M g) on the grid (contact holds while it is positive); None without a contact.
     """
 
     model: str
@@ -131,9 +132,16 @@ class Trajectory:
     t_events: dict
     steps: int
     tol: object
-    invariants: dict = field(repr=False)
-    normal_force: object = field(default=None, repr=False)
+    evaluation: inv.OnDemand = field(repr=False, compare=False)
     state_names: tuple = STATE_NAMES
+
+    @property
+    def invariants(self) -> dict:
+        return self.evaluation.traces
+
+    @property
+    def normal_force(self):
+        return self.evaluation.normal_force
 
     @property
     def success(self) -> bool:
@@ -162,38 +170,6 @@ def resolve_state(model: Model, values, precision: Precision) -> np.ndarray:
     if problem is not None and problem[1] == "outside_domain":
         raise validation.InvalidStart(problem[2], problem[1])
     return y0
-
-
-def _parse_positive(name: str, value, precision: Precision):
-    try:
-        v = precision.number(value)
-    except (ValueError, TypeError) as err:
-        raise ValueError(f"{name}={value!r}: {err}") from None
-    if not float(v) > 0:
-        raise ValueError(f"{name}={value} must be a positive finite number")
-    return v
-
-
-def _parse_tolerance(value, precision: Precision):
-    """The Taylor tolerance: at least the precision's epsilon and below 1.
-
-    Below epsilon nothing is gained (every step rounds at eps) while heyoka's order,
-    ~ -ln(tol)/2 + 1, and with it the compile time grow: tol = 1e-300 in double asks for
-    order ~346, which compiles for a quarter of an hour.
-    """
-    try:
-        exact = mpmath.mpf(str(value).strip()) if isinstance(value, str) else mpmath.mpf(value)
-    except (ValueError, TypeError):
-        exact = None
-    eps = precision.eps
-    allowed = (f"allowed: {eps:.3g} <= tol < 1 (the {precision.name} epsilon 2^{1 - precision.bits} and up; "
-               "for a smaller tolerance choose more bits: quad, or mp:BITS)")
-    if exact is not None and mpmath.isfinite(exact) and 0 < exact < eps:
-        raise ValueError(f"tol={value!r} is below the {precision.name} epsilon: {allowed}")
-    v = _parse_positive("tol", value, precision)
-    if not float(v) < 1:
-        raise ValueError(f"tol={value!r} is not below 1; {allowed}")
-    return v
 
 
 class _Offsets:
@@ -402,81 +378,105 @@ def solve(
         If the integration fails; ``outcome`` is one of :data:`FAILURES` (module docstring).
     """
     prec = parse_precision(precision)
-    if isinstance(model, str):
-        model = get_model(model, equations)
-    elif not isinstance(model, Model):
-        raise ValueError(f"model={model!r}: allowed: a model name (python -m verify models) or a models.Model")
-    t_end = _parse_positive("t_end", t_end, prec)
-    tol_value = prec.zero() if tol is None else _parse_tolerance(tol, prec)
+    model = resolve_model(model, equations)
+    t_end = validation.positive_number("t_end", t_end, prec)
+    tol_value = validation.tolerance(tol, prec)
     grid, with_start = _grid(t_end, t_eval, n_eval, prec)
-    for flag, value in (("events", events), ("high_accuracy", high_accuracy)):
-        if not isinstance(value, (bool, np.bool_)):
-            raise ValueError(f"{flag}={value!r}: allowed: True or False")
+    events = validation.flag("events", events)
+    high_accuracy = validation.flag("high_accuracy", high_accuracy)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress={progress!r} is not callable; allowed: None or a function progress(t, steps)")
     y0, pars = validation.validate(model, state, params, prec)  # compiles the model only to check N
-    compiled = compile_model(model, prec)
+    return propagate(Problem(model, prec, pars, y0, tol_value, events, high_accuracy), t_end, grid, with_start,
+                     progress)
 
-    ta = hy.taylor_adaptive(
-        list(compiled.system), y0, pars=compiled.system_pars(prec.array(pars.values())), tol=tol_value,
-        t_events=compiled.t_events() if events else [], high_accuracy=high_accuracy, **prec.integrator_kwargs(),
-    )
-    with heyoka_log.collect() as messages:
-        run = _propagate(ta, grid, t_end, max_step(y0, pars, prec), prec, progress)
+
+def propagate(problem: Problem, t_end, grid, with_start: bool = True, progress=None) -> Trajectory:
+    """Run a validated :class:`~verify.engine.problem.Problem` through ``grid`` (from t = 0) to ``t_end``.
+
+    ``grid`` is an array at the problem's precision starting at 0 (:func:`solve` makes it from
+    ``t_eval`` / ``n_eval``); ``with_start`` says whether t = 0 is an output.  The integrator is
+    borrowed from :mod:`verify.engine.integrators`; the invariants are evaluated when first read
+    (:class:`verify.engine.invariants.OnDemand`), on every output of the run.
+    """
+    model, prec, pars, y0 = problem.model, problem.precision, problem.params, problem.y0
+    compiled = problem.compiled
+    key, build = integrators.for_model(compiled, problem.tol, events=problem.events,
+                                       high_accuracy=problem.high_accuracy)
+    with integrators.borrowed(key, build, prec.zero(), y0, problem.par_vector) as ta:
+        with heyoka_log.collect() as messages:
+            run = _propagate(ta, grid, t_end, problem.max_step, prec, progress)
+        end = _End(ta.time, list(ta.state), ta.tol)
     t = prec.array(run.times)
     y = np.ascontiguousarray(np.array(run.states).T)
-    fail = _failure(model, compiled, run, t, y, pars, events, messages)
+    fail, normal = _failure(model, compiled, run, t, y, pars, problem.events, messages)
     if fail is not None:
         label, good, message = fail
-        partial = _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, run.steps, ta.tol)
-        raise IntegrationError(message, label, ta.time, list(ta.state), partial)
-    status, label, message, t_events = _interpret(run.outcome, compiled, ta)
-    if not events:
+        partial = _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, run.steps, end.tol)
+        raise IntegrationError(message, label, end.time, end.state, partial)
+    status, label, message, t_events = _interpret(run.outcome, compiled, end)
+    if not problem.events:
         status, label, message = _unstopped(model, t, y, status, label, message)
-
-    values, normal = inv.evaluate(compiled, y, pars)
-    traces = inv.traces(compiled, values, y, pars)
+    lazy = inv.OnDemand(compiled, y, pars, drop_start=not with_start, normal=normal)
     if not with_start:  # t = 0 was integrated from, not asked for
         t, y = t[1:], np.ascontiguousarray(y[:, 1:])
-        normal = None if normal is None else normal[1:]
-        traces = {n: replace(tr, values=tr.values[1:], initial_value=tr.values[0]) for n, tr in traces.items()}
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
-        status=status, message=message, outcome=label, t_events=t_events, steps=run.steps, tol=ta.tol,
-        invariants=traces, normal_force=normal,
+        status=status, message=message, outcome=label, t_events=t_events, steps=run.steps, tol=end.tol,
+        evaluation=lazy,
     )
+
+
+@dataclass(frozen=True)
+class _End:
+    """Where the integrator stopped (read before it is given back to the pool)."""
+
+    time: object
+    state: list
+    tol: object
+
+
+def _as_float(values) -> np.ndarray:
+    """Values of any precision's dtype as doubles (vectorised where numpy can cast the dtype)."""
+    try:
+        return np.asarray(values).astype(float)
+    except (TypeError, ValueError):
+        return np.array([float(v) for v in np.ravel(values)]).reshape(np.shape(values))
 
 
 def _failure(model: Model, compiled, run: _Run, t, y, pars, events: bool, messages):
-    """(outcome, number of valid leading outputs, message) of a failed run, or None.
+    """((outcome, number of valid leading outputs, message) of a failed run or None, normal force).
 
     The guard of the module docstring: heyoka's own failures first, then every returned state
-    against the domain and (events on) the normal force.  At a terminal event's own output the
-    event's function is ~0 with either sign, so that one condition is not applied there.
+    against the domain and (events on) the normal force, which is returned for the record (None
+    with events off or without a contact).  At a terminal event's own output the event's function
+    is ~0 with either sign, so that one condition is not applied there.  Runs on every output of
+    every run, so it works on whole arrays, converted to double as the checks always were.
     """
     name = model.name
-    finite = np.array([all(math.isfinite(float(v)) for v in col) for col in y.T])
+    yf = _as_float(y)
+    finite = np.isfinite(yf).all(axis=0)
     if run.outcome == hy.taylor_outcome.err_nf_state or not finite.all():
         k = int(np.argmin(finite)) if not finite.all() else len(finite) - 1
         last = float(t[max(k - 1, 0)])
         return ("failed:non_finite", k, f"the integration of {name!r} failed after t = {last:.9g}: heyoka "
-                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = {last:.9g}")
+                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = {last:.9g}"), None
     if run.collapsed:
         k = len(t) - 1
         return ("failed:step_size_collapse", k, f"the integration of {name!r} failed at t = {float(t[k]):.9g}: the "
                 f"step size collapsed (a segment of 2 pi / the fastest initial rate took more than "
                 f"{int(2 * math.pi * COLLAPSE_FACTOR)} steps; the last was {float(run.last_h):.3g} s) -- the motion "
-                f"runs into a singularity of the equations (state {_state_text(y[:, k])})")
+                f"runs into a singularity of the equations (state {_state_text(y[:, k])})"), None
     ev = _event_name(run.outcome, compiled)
     dom = model.domain
     lo, hi = float(dom.theta_min), float(dom.theta_max)
-    th = np.array([float(v) for v in y[0]])
+    th = yf[0]
     inside = (lo < th) & (th < hi)
     if ev in (dom.below, dom.above):
         inside[-1] = True
     detection = [m.text for m in messages if m.event_detection or m.level in ("error", "critical")]
     normal = validation.normal_force(compiled, y, pars) if events else None
-    positive = np.ones(len(th), bool) if normal is None else np.array([float(v) > 0 for v in normal])
+    positive = np.ones(len(th), bool) if normal is None else _as_float(normal) > 0
     if ev == "contact_lost":
         positive[-1] = True
     if not inside.all() and events:
@@ -485,17 +485,17 @@ def _failure(model: Model, compiled, run: _Run, t, y, pars, events: bool, messag
         if detection:
             why += f" (heyoka: {detection[0]})"
         return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} theta = "
-                f"{th[k]:.9g} is outside its domain {lo:.9g} < theta < {hi:.9g}, {why}; the run is not reliable from there")
+                f"{th[k]:.9g} is outside its domain {lo:.9g} < theta < {hi:.9g}, {why}; the run is not reliable from there"), normal
     if not positive.all():
         k = int(np.argmin(positive))
         extra = f" (heyoka: {detection[0]})" if detection else ""
         return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} the normal "
                 f"force N/(Mg) = {float(normal[k]):.6g} <= 0 without the terminal event contact_lost: heyoka's event "
-                f"detection failed{extra}; the run is not reliable from there")
+                f"detection failed{extra}; the run is not reliable from there"), normal
     if detection:
         return ("failed:event_detection", len(t) - 1, f"the integration of {name!r} failed: heyoka's event detection "
-                f"failed during the run ({detection[0]}); an event may have been missed")
-    return None
+                f"failed during the run ({detection[0]}); an event may have been missed"), normal
+    return None, normal
 
 
 def _unstopped(model: Model, t, y, status, label, message):
@@ -534,32 +534,15 @@ def _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, ste
     """The run up to its last valid output, as a Trajectory with the failure's outcome (or None)."""
     keep = max(int(good), 1)
     t, y = t[:keep], np.ascontiguousarray(y[:, :keep])
+    evaluation = inv.OnDemand(compiled, y, pars, drop_start=False)
     try:
-        values, normal = inv.evaluate(compiled, y, pars)
-        traces = inv.traces(compiled, values, y, pars)
+        evaluation.traces  # evaluated now: a record that cannot be evaluated is not returned
     except Exception:  # noqa: BLE001 - a best-effort record of a failed run
         return None
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
-        status=-1, message=message, outcome=label, t_events={}, steps=steps, tol=tol, invariants=traces,
-        normal_force=normal,
+        status=-1, message=message, outcome=label, t_events={}, steps=steps, tol=tol, evaluation=evaluation,
     )
-
-
-def max_step(y0, pars: dict, prec: Precision):
-    """The largest step: one radian of the fastest initial rate (or of sqrt(g)).
-
-    heyoka's step-size rule assumes that Taylor coefficients decay geometrically.  On
-    an exactly steady motion (the Eq. 45 spin-down, a steady precession) every
-    coefficient of theta and the rates vanishes, phi and psi are linear in t, and only
-    x, y keep round-off-sized coefficients that grow like Omega^n/n! before decaying;
-    the rule then takes steps with Omega h of tens or hundreds of radians and sums a
-    truncated series far outside its range (seen: x = -1.2e4 instead of 0 after 1 s of
-    the Eq. 45 state at theta = 0.1 in quad).  Capping Omega h at 1 keeps the truncated
-    terms below 1/p!.  On ordinary motions the cap does not bind (typical Omega h ~ 0.03).
-    """
-    rates = [abs(float(y0[i])) for i in (3, 4, 5)] + [float(pars.get("g", 1)) ** 0.5]
-    return prec.number(1) / prec.number(max(rates))
 
 
 def _grid(t_end, t_eval, n_eval, prec: Precision):
@@ -606,15 +589,15 @@ def _grid(t_end, t_eval, n_eval, prec: Precision):
     return prec.array(pts), with_start
 
 
-def _interpret(outcome, compiled, ta):
+def _interpret(outcome, compiled, end: _End):
     code = int(outcome)
     names = [name for name, _, _ in compiled.events]
     if outcome == hy.taylor_outcome.time_limit:
         return 0, "ok", "reached t_end", {}
     if -len(names) <= code < 0:
         name = names[-code - 1]
-        return 1, f"event:{name}", f"stopped by the terminal event {name} at t = {ta.time}", {name: ta.time}
+        return 1, f"event:{name}", f"stopped by the terminal event {name} at t = {end.time}", {name: end.time}
     raise IntegrationError(
-        f"the integration of {compiled.model.name!r} failed at t = {ta.time} with outcome {outcome} "
-        f"(state {list(ta.state)})", "failed:" + str(outcome).rsplit(".", 1)[-1], ta.time, list(ta.state)
+        f"the integration of {compiled.model.name!r} failed at t = {end.time} with outcome {outcome} "
+        f"(state {end.state})", "failed:" + str(outcome).rsplit(".", 1)[-1], end.time, end.state
     )
