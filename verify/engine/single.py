@@ -172,11 +172,19 @@ def resolve_state(model: Model, values, precision: Precision) -> np.ndarray:
     return y0
 
 
+def _integer_reader(precision: Precision):
+    """n -> the integer n at ``precision``, as ``precision.number`` reads it (exactly: |n| < 2^53 here),
+    without its general path (a Fraction per call) where the type takes an int exactly itself."""
+    if precision.name in ("double", "long"):
+        return precision.fp_type
+    return precision.number
+
+
 class _Offsets:
     """phi, psi, x, y moved out of the integrator (module docstring)."""
 
     def __init__(self, precision: Precision):
-        self.fp = precision.number
+        self.fp = _integer_reader(precision)
         with mpmath.workprec(precision.bits + 32):
             self.two_pi = precision.number(2 * mpmath.pi)
         self.limit = {1: float(self.two_pi), 2: float(self.two_pi), 6: 1.0, 7: 1.0}
@@ -269,13 +277,14 @@ def _propagate(ta, grid, t_end, h_max, prec: Precision, progress=None) -> _Run:
     bits), so the result is the same with or without it (tests/test_api.py).
     """
     offsets = _Offsets(prec)
+    integer = _integer_reader(prec)
     seg = prec.number(2 * math.pi) * h_max
     budget = int(2 * math.pi * COLLAPSE_FACTOR)
     clock = _Clock(progress) if progress is not None else None
     run = _Run(hy.taylor_outcome.time_limit, 0, [grid[0]], [np.array(ta.state)])
     j, k = 1, 1  # next output grid index, segment number
     while True:
-        end = prec.number(k) * seg
+        end = integer(k) * seg
         if not end < t_end:
             end = t_end
         inside = []
@@ -557,12 +566,18 @@ def _grid(t_end, t_eval, n_eval, prec: Precision):
         if n_eval < 2:
             raise ValueError(f"n_eval={n_eval} must be at least 2 (the start and t_end)")
         n = int(n_eval) - 1
-        pts = [prec.zero()] + [t_end * prec.number(i) / prec.number(n) for i in range(1, n)] + [t_end]
-        for i, (a, b) in enumerate(zip(pts, pts[1:])):
-            if not b > a:
-                raise ValueError(f"n_eval={n_eval}: the grid k t_end / {n} is not strictly increasing in {prec.name} "
-                                 f"(t_{i} = {a}, t_{i + 1} = {b}); allowed: fewer points, a longer t_end or more bits")
-        return prec.array(pts), True
+        if prec.name in ("double", "long") and n < 2 ** 53:  # the same roundings, one array operation
+            inner = (t_end * np.arange(1, n, dtype=prec.fp_type)) / prec.fp_type(n)
+            pts = np.concatenate([[prec.fp_type(0)], inner, [t_end]]).astype(prec.fp_type)
+        else:
+            pts = prec.array([prec.zero()] + [t_end * prec.number(i) / prec.number(n) for i in range(1, n)] + [t_end])
+        rising = pts[1:] > pts[:-1]
+        if not np.all(rising):
+            i = int(np.argmin(rising))
+            a, b = pts[i], pts[i + 1]
+            raise ValueError(f"n_eval={n_eval}: the grid k t_end / {n} is not strictly increasing in {prec.name} "
+                             f"(t_{i} = {a}, t_{i + 1} = {b}); allowed: fewer points, a longer t_end or more bits")
+        return pts, True
     if isinstance(t_eval, (str, bytes)) or not hasattr(t_eval, "__iter__"):
         raise ValueError(f"t_eval={t_eval!r}: allowed: a sequence of times in [0, t_end], strictly increasing")
     pts = []
