@@ -53,19 +53,20 @@ class CompiledModel:
         """The first n_pars_function of ``values`` already in ``par[i]`` order (prefer :meth:`parameter_vector`)."""
         return values[: self.n_pars_function]
 
-    def parameter_vector(self, values: Mapping, for_function: bool = False):
+    def parameter_vector(self, values: Mapping, for_function: bool = False, every: bool = False):
         """The ``par[i]`` values of the system (or of ``invariant_function``) from a name -> value mapping.
 
         ``par[i]`` is ``model.parameters[i]`` whatever the order of ``values``; heyoka wants exactly
         as many values as the highest ``par[i]`` used, so the vector is cut there.  Every name of
         the mapping must be a parameter of the model, and every parameter the vector holds must be
-        given; the values are read at the compiled precision.
+        given; the values are read at the compiled precision.  ``every``: all of the model's
+        parameters, for a system extended with more ``par[i]`` after them.
         """
         names = self.model.parameter_names
         unknown = [n for n in values if n not in names]
         if unknown:
             raise KeyError(f"{unknown[0]!r} is not a parameter of {self.model.name!r} ({', '.join(names)})")
-        n = self.n_pars_function if for_function else self.n_pars_system
+        n = len(names) if every else self.n_pars_function if for_function else self.n_pars_system
         missing = [name for name in names[:n] if name not in values]
         if missing:
             raise KeyError(f"no value for the parameter {missing[0]!r} of {self.model.name!r}")

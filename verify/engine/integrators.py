@@ -87,6 +87,34 @@ def for_model(compiled, tol, *, events: bool, high_accuracy: bool):
     return key, build
 
 
+def for_extended(compiled, extra_states: tuple, theta_stop: bool):
+    """(key, build) of a compiled model's eight equations with more states and a theta_stop event.
+
+    ``extra_states``: (name, sympy right-hand side in the model's state and parameter symbols)
+    pairs, appended after the eight states; ``theta_stop``: a terminal event where theta falls
+    through ``par[len(model.parameters)]`` (the parameter after the model's own).  Tolerance
+    epsilon, the model's terminal events first (:mod:`.single`, ``propagate_in_turns``).
+    """
+    from .compile import symbol_map, to_heyoka
+    from models.symbols import theta
+
+    prec, model = compiled.precision, compiled.model
+    key = ("extended", model, prec, tuple((name, str(rhs)) for name, rhs in extra_states), bool(theta_stop))
+
+    def build():
+        mapping = symbol_map(model, compiled.variables)
+        system = list(compiled.system) + [(hy.make_vars(name), to_heyoka(rhs, mapping)) for name, rhs in extra_states]
+        events = compiled.t_events()
+        if theta_stop:
+            stop = mapping[theta] - hy.par[len(model.parameters)]
+            events.append(hy.t_event(stop, direction=hy.event_direction.negative, fp_type=prec.fp_type))
+        n_pars = len(model.parameters) + (1 if theta_stop else 0)
+        return hy.taylor_adaptive(system, prec.array([0] * len(system)), pars=prec.array([0] * n_pars),
+                                  tol=prec.zero(), t_events=events, **prec.integrator_kwargs())
+
+    return key, build
+
+
 def clear() -> None:
     """Forget every template and idle integrator (tests; memory)."""
     with _lock:
