@@ -200,6 +200,13 @@ class _Offsets:
             st[i] = v - turns
             self.value[i] = self.value[i] + turns
 
+    def restore_rows(self, rows) -> list:
+        """:meth:`restore` of every row of a 2-D block, one array addition per cyclic column."""
+        rows = np.array(rows)
+        for i in _CYCLIC:
+            rows[:, i] = rows[:, i] + self.value[i]
+        return list(rows)
+
     def restore(self, row) -> np.ndarray:
         row = np.array(row)
         for i in _CYCLIC:
@@ -297,9 +304,10 @@ def _propagate(ta, grid, t_end, h_max, prec: Precision, progress=None) -> _Run:
         res = ta.propagate_grid(prec.array([ta.time] + inside + [end]), **kwargs)
         outcome, run.steps = res[0], run.steps + int(res[3])
         rows = res[-1][1:]
-        for t, row in zip(inside, rows):
-            run.times.append(t)
-            run.states.append(offsets.restore(row))
+        if len(rows):
+            kept = rows[: len(inside)]
+            run.times.extend(inside[: len(kept)])
+            run.states.extend(offsets.restore_rows(kept))
         finished = len(rows) == len(inside) + 1  # (heyoka says step_limit when the budget ends on t_end)
         if outcome == hy.taylor_outcome.step_limit and not finished:  # the step size collapsed
             run.outcome, run.collapsed, run.last_h = outcome, True, ta.last_h
