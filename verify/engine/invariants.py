@@ -186,6 +186,15 @@ class OnDemand:
         self._traces = None
         self._lock = threading.Lock()
 
+    def __getstate__(self):  # a Trajectory stays picklable (process pools): the lock is not
+        state = dict(self.__dict__)
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._lock = threading.Lock()
+
     def _start(self, values):
         return values if values is None or not self._drop else values[1:]
 
