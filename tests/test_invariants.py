@@ -68,3 +68,28 @@ def test_jellett_and_routh_are_the_chaplygin_integrals_of_the_hurricane_balls():
             for j in range(2):
                 got = Pm[i][0] * M[0][j] + Pm[i][1] * M[1][j]
                 assert abs(got - ref[i][j]) < 1e-12 * (1 + abs(ref[i][j]))
+
+
+def test_invariants_are_evaluated_on_first_read_and_equal_an_eager_evaluation():
+    """solve defers the invariants (Chaplygin's closed form costs milliseconds a point); when read
+    they are the values verify.engine.invariants.evaluate gives on every output of the run."""
+    import numpy as np
+
+    from verify import solve
+    from verify.engine import invariants as inv
+    from verify.engine.compile import compile_model
+    from verify.standard import STANDARD_STATES
+
+    sol = solve("disk", 1, STANDARD_STATES["disk"], t_eval=[0.25, 0.5, 1.0])
+    assert sol.evaluation._traces is None  # nothing evaluated yet (the guard's normal force aside)
+    compiled = compile_model(get_model("disk"), sol.precision)
+    y_all = np.ascontiguousarray(sol.evaluation._y)
+    assert y_all.shape[1] == len(sol.t) + 1  # t = 0 is kept for the drifts
+    values, normal = inv.evaluate(compiled, y_all, sol.params)
+    traces = sol.invariants
+    assert sol.evaluation._traces is traces and sol.invariants is traces  # evaluated once, kept
+    for name, tr in traces.items():
+        assert tr.values.tobytes() == values[name][1:].tobytes()
+        assert tr.initial == values[name][0]
+        assert tr.max_abs_drift == max(abs(float(v - values[name][0])) for v in values[name])
+    assert sol.normal_force.tobytes() == normal[1:].tobytes()

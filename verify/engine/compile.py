@@ -1,11 +1,14 @@
 """From a model's sympy expressions to heyoka: the system, its events and its cfuncs.
 
-Parameters become runtime ``par[i]`` in the model's parameter order, so one compiled
-integrator serves a whole sweep.  Compiled objects are cached per (model, precision);
-heyoka itself caches the machine code in memory and on disk.
+Parameters become runtime ``par[i]`` (``par[i]`` is ``model.parameters[i]``), so one compiled
+integrator serves a whole sweep; the values for them are laid out by name
+(:meth:`CompiledModel.parameter_vector`), never by the order of a caller's mapping.  Compiled
+objects are cached per (model, precision); heyoka itself caches the machine code in memory and
+on disk.
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -43,10 +46,31 @@ class CompiledModel:
     n_pars_function: int
 
     def system_pars(self, values):
+        """The first n_pars_system of ``values`` already in ``par[i]`` order (prefer :meth:`parameter_vector`)."""
         return values[: self.n_pars_system]
 
     def function_pars(self, values):
+        """The first n_pars_function of ``values`` already in ``par[i]`` order (prefer :meth:`parameter_vector`)."""
         return values[: self.n_pars_function]
+
+    def parameter_vector(self, values: Mapping, for_function: bool = False, every: bool = False):
+        """The ``par[i]`` values of the system (or of ``invariant_function``) from a name -> value mapping.
+
+        ``par[i]`` is ``model.parameters[i]`` whatever the order of ``values``; heyoka wants exactly
+        as many values as the highest ``par[i]`` used, so the vector is cut there.  Every name of
+        the mapping must be a parameter of the model, and every parameter the vector holds must be
+        given; the values are read at the compiled precision.  ``every``: all of the model's
+        parameters, for a system extended with more ``par[i]`` after them.
+        """
+        names = self.model.parameter_names
+        unknown = [n for n in values if n not in names]
+        if unknown:
+            raise KeyError(f"{unknown[0]!r} is not a parameter of {self.model.name!r} ({', '.join(names)})")
+        n = len(names) if every else self.n_pars_function if for_function else self.n_pars_system
+        missing = [name for name in names[:n] if name not in values]
+        if missing:
+            raise KeyError(f"no value for the parameter {missing[0]!r} of {self.model.name!r}")
+        return self.precision.array([values[name] for name in names[:n]])
 
     @property
     def n_invariants(self) -> int:
@@ -58,6 +82,7 @@ class CompiledModel:
 
 
 def symbol_map(model: Model, variables) -> dict:
+    """State symbols to ``variables``; the parameter ``model.parameters[i]`` to ``par[i]``."""
     mapping = dict(zip(STATE, variables))
     mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
     return mapping

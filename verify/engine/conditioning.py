@@ -16,7 +16,8 @@ import numpy as np
 from models import get_model
 
 from .compile import compile_model
-from .single import max_step, resolve_parameters, resolve_state
+from .problem import max_step
+from .single import resolve_parameters, resolve_state
 from ..precision import parse_precision
 
 
@@ -35,17 +36,43 @@ def _variational(model, t_eval, state, params, equations, with_params: bool):
     compiled = compile_model(model, prec)
     wrt = hy.var_args.vars | hy.var_args.params if with_params else hy.var_args.vars
     vsys = hy.var_ode_sys(list(compiled.system), wrt, order=1)
-    par_values = compiled.system_pars(prec.array(pars.values()))
+    par_values = compiled.parameter_vector(pars)
     ta = hy.taylor_adaptive(vsys, y0, pars=par_values, compact_mode=True)
     times = np.asarray(t_eval, dtype=float)
     grid = np.concatenate([[0.0], times]) if times[0] > 0 else times
-    res = ta.propagate_grid(grid, max_delta_t=float(max_step(y0, pars, prec)))
-    if res[0] != hy.taylor_outcome.time_limit:
-        raise RuntimeError(f"the variational run of {model.name} stopped early: {res[0]}")
+    outcome, _, _, _, _, rows = ta.propagate_grid(grid, max_delta_t=float(max_step(y0, pars, prec)))
+    if outcome != hy.taylor_outcome.time_limit:
+        raise RuntimeError(f"the variational run of {model.name} stopped early: {outcome}")
     names = [str(v) for v in vsys.vargs]
     sl, n = ta.get_vslice(order=1), len(y0)
-    blocks = [row[sl].reshape(n, len(names)) for row in res[-1][-len(times):]]
+    blocks = [row[sl].reshape(n, len(names)) for row in rows[-len(times):]]
     return blocks, names, par_values
+
+
+def transition_matrix(model, state, params, t_end, precision="double"):
+    """Phi(t_end, 0) = d y(t_end) / d y(0), an n x n array at ``precision``, from one run of the
+    order-1 variational equations (compact mode at every precision: they are 72 equations).
+
+    ``state`` and ``params`` as for :func:`verify.engine.single.solve` (``model`` a name or a
+    Model); ``t_end`` a number at ``precision``.  Steps are capped by
+    :func:`verify.engine.problem.max_step`; a run that does not reach ``t_end`` raises
+    ``RuntimeError``.
+    """
+    prec = parse_precision(precision)
+    if isinstance(model, str):
+        model = get_model(model)
+    pars = resolve_parameters(model, params, prec)
+    y0 = resolve_state(model, state, prec)
+    compiled = compile_model(model, prec)
+    vsys = hy.var_ode_sys(list(compiled.system), hy.var_args.vars, order=1)
+    kwargs = prec.integrator_kwargs()
+    kwargs["compact_mode"] = True
+    ta = hy.taylor_adaptive(vsys, y0, pars=compiled.parameter_vector(pars), **kwargs)
+    outcome = ta.propagate_until(t_end, max_delta_t=max_step(y0, pars, prec))[0]
+    if outcome != hy.taylor_outcome.time_limit:
+        raise RuntimeError(f"the variational run of {model.name} stopped with {outcome}")
+    n = len(y0)
+    return ta.state[ta.get_vslice(order=1)].reshape(n, n)
 
 
 def transition_norms(model, t_eval, state=None, params=None, equations="derived") -> np.ndarray:

@@ -9,7 +9,8 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import threading
+from dataclasses import dataclass, replace
 from functools import cmp_to_key, lru_cache
 
 import heyoka as hy
@@ -142,7 +143,7 @@ def evaluate(compiled: CompiledModel, y: np.ndarray, params: dict) -> dict:
     """Closed-form invariants, the normal force and Chaplygin's integrals at every column of y."""
     model, precision = compiled.model, compiled.precision
     n = y.shape[1]
-    pars = np.ascontiguousarray(np.repeat(compiled.function_pars(precision.array(params.values()))[:, None], n, axis=1))
+    pars = np.ascontiguousarray(np.repeat(compiled.parameter_vector(params, for_function=True)[:, None], n, axis=1))
     out = compiled.invariant_function(np.ascontiguousarray(y), pars=pars)
     result = {inv.name: out[i] for i, inv in enumerate(model.invariants)}
     j = compiled.n_invariants
@@ -167,6 +168,59 @@ def traces(compiled: CompiledModel, values: dict, y: np.ndarray, params: dict) -
         out["chaplygin_1"] = trace("chaplygin_1", c1, scale, eps)
         out["chaplygin_2"] = trace("chaplygin_2", c2, scale, eps)
     return out
+
+
+class OnDemand:
+    """The invariants of a run (and the normal force), evaluated on first request and kept.
+
+    Holds the run's states on its whole output grid, t = 0 included, so the drifts cover every
+    output of the run whatever part of it is returned; ``drop_start`` removes t = 0 from the
+    returned values (``solve(t_eval=...)`` without 0) while the drifts stay taken against I(0).
+    ``normal`` is N/(Mg) where the caller already has it (the failure guard computed it).
+    Thread-safe: the first request evaluates, later ones read.
+    """
+
+    def __init__(self, compiled: CompiledModel, y: np.ndarray, params: dict, drop_start: bool, normal=None):
+        self._compiled, self._y, self._params, self._drop = compiled, y, params, drop_start
+        self._normal = normal
+        self._traces = None
+        self._lock = threading.Lock()
+
+    def __getstate__(self):  # a Trajectory stays picklable (process pools): the lock is not
+        state = dict(self.__dict__)
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._lock = threading.Lock()
+
+    def _start(self, values):
+        return values if values is None or not self._drop else values[1:]
+
+    @property
+    def normal_force(self):
+        if self._normal is None and self._compiled.has_normal_force and self._traces is None:
+            self._evaluate()
+        return self._start(self._normal)
+
+    @property
+    def traces(self) -> dict:
+        if self._traces is None:
+            self._evaluate()
+        return self._traces
+
+    def _evaluate(self) -> None:
+        with self._lock:
+            if self._traces is not None:
+                return
+            values, normal = evaluate(self._compiled, self._y, self._params)
+            found = traces(self._compiled, values, self._y, self._params)
+            if self._drop:
+                found = {n: replace(tr, values=tr.values[1:], initial_value=tr.values[0]) for n, tr in found.items()}
+            if self._normal is None:
+                self._normal = normal
+            self._traces = found
 
 
 # --- Chaplygin's integrals --------------------------------------------------------------

@@ -48,21 +48,20 @@ from __future__ import annotations
 import math
 import numbers
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import heyoka as hy
 import mpmath
 import numpy as np
 
-from models import get_model
 from models.base import Model
 from models.symbols import STATE_NAMES
 
-from . import heyoka_log
+from . import heyoka_log, integrators
 from . import invariants as inv
 from . import validation
-from .compile import compile_model
 from .invariants import InvariantTrace
+from .problem import Problem, max_step, resolve_model
 from ..precision import Precision, parse_precision
 
 _CYCLIC = (1, 2, 6, 7)  # phi, psi, x, y
@@ -110,12 +109,14 @@ class Trajectory:
         :class:`IntegrationError`'s partial record.
     steps : int
         Taylor steps taken.
-    invariants : dict of name -> InvariantTrace
+    invariants : dict of name -> InvariantTrace (property)
         Energy first, then the model's other conserved quantities; each with its values and
         ``max_abs_drift``, ``max_rel_drift`` (over |I(0)|) and ``max_drift_vs_terms`` (over
         the magnitudes of I's terms), see :class:`verify.engine.invariants.InvariantTrace`.
-    normal_force : ndarray or None
-        N / (M g) on the grid (contact holds while it is positive).
+        Evaluated when first read (Chaplygin's closed form costs milliseconds a point), then
+        kept; the drifts cover every output of the run.
+    normal_force : ndarray or None (property)
+        N / (M g) on the grid (contact holds while it is positive); None without a contact.
     """
 
     model: str
@@ -131,9 +132,16 @@ class Trajectory:
     t_events: dict
     steps: int
     tol: object
-    invariants: dict = field(repr=False)
-    normal_force: object = field(default=None, repr=False)
+    evaluation: inv.OnDemand = field(repr=False, compare=False)
     state_names: tuple = STATE_NAMES
+
+    @property
+    def invariants(self) -> dict:
+        return self.evaluation.traces
+
+    @property
+    def normal_force(self):
+        return self.evaluation.normal_force
 
     @property
     def success(self) -> bool:
@@ -164,43 +172,19 @@ def resolve_state(model: Model, values, precision: Precision) -> np.ndarray:
     return y0
 
 
-def _parse_positive(name: str, value, precision: Precision):
-    try:
-        v = precision.number(value)
-    except (ValueError, TypeError) as err:
-        raise ValueError(f"{name}={value!r}: {err}") from None
-    if not float(v) > 0:
-        raise ValueError(f"{name}={value} must be a positive finite number")
-    return v
-
-
-def _parse_tolerance(value, precision: Precision):
-    """The Taylor tolerance: at least the precision's epsilon and below 1.
-
-    Below epsilon nothing is gained (every step rounds at eps) while heyoka's order,
-    ~ -ln(tol)/2 + 1, and with it the compile time grow: tol = 1e-300 in double asks for
-    order ~346, which compiles for a quarter of an hour.
-    """
-    try:
-        exact = mpmath.mpf(str(value).strip()) if isinstance(value, str) else mpmath.mpf(value)
-    except (ValueError, TypeError):
-        exact = None
-    eps = precision.eps
-    allowed = (f"allowed: {eps:.3g} <= tol < 1 (the {precision.name} epsilon 2^{1 - precision.bits} and up; "
-               "for a smaller tolerance choose more bits: quad, or mp:BITS)")
-    if exact is not None and mpmath.isfinite(exact) and 0 < exact < eps:
-        raise ValueError(f"tol={value!r} is below the {precision.name} epsilon: {allowed}")
-    v = _parse_positive("tol", value, precision)
-    if not float(v) < 1:
-        raise ValueError(f"tol={value!r} is not below 1; {allowed}")
-    return v
+def _integer_reader(precision: Precision):
+    """n -> the integer n at ``precision``, as ``precision.number`` reads it (exactly: |n| < 2^53 here),
+    without its general path (a Fraction per call) where the type takes an int exactly itself."""
+    if precision.name in ("double", "long"):
+        return precision.fp_type
+    return precision.number
 
 
 class _Offsets:
     """phi, psi, x, y moved out of the integrator (module docstring)."""
 
     def __init__(self, precision: Precision):
-        self.fp = precision.number
+        self.fp = _integer_reader(precision)
         with mpmath.workprec(precision.bits + 32):
             self.two_pi = precision.number(2 * mpmath.pi)
         self.limit = {1: float(self.two_pi), 2: float(self.two_pi), 6: 1.0, 7: 1.0}
@@ -215,6 +199,13 @@ class _Offsets:
             turns = self.fp(round(float(v) / float(self.two_pi))) * self.two_pi if i in _ANGLES else v
             st[i] = v - turns
             self.value[i] = self.value[i] + turns
+
+    def restore_rows(self, rows) -> list:
+        """:meth:`restore` of every row of a 2-D block, one array addition per cyclic column."""
+        rows = np.array(rows)
+        for i in _CYCLIC:
+            rows[:, i] = rows[:, i] + self.value[i]
+        return list(rows)
 
     def restore(self, row) -> np.ndarray:
         row = np.array(row)
@@ -293,13 +284,14 @@ def _propagate(ta, grid, t_end, h_max, prec: Precision, progress=None) -> _Run:
     bits), so the result is the same with or without it (tests/test_api.py).
     """
     offsets = _Offsets(prec)
+    integer = _integer_reader(prec)
     seg = prec.number(2 * math.pi) * h_max
     budget = int(2 * math.pi * COLLAPSE_FACTOR)
     clock = _Clock(progress) if progress is not None else None
     run = _Run(hy.taylor_outcome.time_limit, 0, [grid[0]], [np.array(ta.state)])
     j, k = 1, 1  # next output grid index, segment number
     while True:
-        end = prec.number(k) * seg
+        end = integer(k) * seg
         if not end < t_end:
             end = t_end
         inside = []
@@ -312,9 +304,10 @@ def _propagate(ta, grid, t_end, h_max, prec: Precision, progress=None) -> _Run:
         res = ta.propagate_grid(prec.array([ta.time] + inside + [end]), **kwargs)
         outcome, run.steps = res[0], run.steps + int(res[3])
         rows = res[-1][1:]
-        for t, row in zip(inside, rows):
-            run.times.append(t)
-            run.states.append(offsets.restore(row))
+        if len(rows):
+            kept = rows[: len(inside)]
+            run.times.extend(inside[: len(kept)])
+            run.states.extend(offsets.restore_rows(kept))
         finished = len(rows) == len(inside) + 1  # (heyoka says step_limit when the budget ends on t_end)
         if outcome == hy.taylor_outcome.step_limit and not finished:  # the step size collapsed
             run.outcome, run.collapsed, run.last_h = outcome, True, ta.last_h
@@ -382,7 +375,12 @@ def solve(
         ``t_eval`` or ``n_eval``, not both.
     events : bool
         Stop at the domain's ends and at loss of contact (default True).  Without events
-        neither is enforced; a run whose theta leaves the domain then ends ``outside_domain``.
+        neither is enforced (the integrator then has no events compiled at all); a run whose
+        theta leaves the domain then ends ``outside_domain``.  What they cost, measured on the
+        disk's standard start by ``scripts/event_costs.py`` (bare heyoka, t_end 10 / 100 s, 2
+        shared cores): the domain's two ends +18 % / +8 %, ``contact_lost`` +53 % / +38 % (its
+        function is the normal force, whose Taylor coefficients heyoka computes every step),
+        all three +56 % / +42 %.
     high_accuracy : bool
         heyoka's high-accuracy mode (compensated summation of the Taylor series), for long runs
         where the energy error should follow Brouwer's law (``python -m verify bench`` measures it).
@@ -402,81 +400,105 @@ def solve(
         If the integration fails; ``outcome`` is one of :data:`FAILURES` (module docstring).
     """
     prec = parse_precision(precision)
-    if isinstance(model, str):
-        model = get_model(model, equations)
-    elif not isinstance(model, Model):
-        raise ValueError(f"model={model!r}: allowed: a model name (python -m verify models) or a models.Model")
-    t_end = _parse_positive("t_end", t_end, prec)
-    tol_value = prec.zero() if tol is None else _parse_tolerance(tol, prec)
+    model = resolve_model(model, equations)
+    t_end = validation.positive_number("t_end", t_end, prec)
+    tol_value = validation.tolerance(tol, prec)
     grid, with_start = _grid(t_end, t_eval, n_eval, prec)
-    for flag, value in (("events", events), ("high_accuracy", high_accuracy)):
-        if not isinstance(value, (bool, np.bool_)):
-            raise ValueError(f"{flag}={value!r}: allowed: True or False")
+    events = validation.flag("events", events)
+    high_accuracy = validation.flag("high_accuracy", high_accuracy)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress={progress!r} is not callable; allowed: None or a function progress(t, steps)")
     y0, pars = validation.validate(model, state, params, prec)  # compiles the model only to check N
-    compiled = compile_model(model, prec)
+    return propagate(Problem(model, prec, pars, y0, tol_value, events, high_accuracy), t_end, grid, with_start,
+                     progress)
 
-    ta = hy.taylor_adaptive(
-        list(compiled.system), y0, pars=compiled.system_pars(prec.array(pars.values())), tol=tol_value,
-        t_events=compiled.t_events() if events else [], high_accuracy=high_accuracy, **prec.integrator_kwargs(),
-    )
-    with heyoka_log.collect() as messages:
-        run = _propagate(ta, grid, t_end, max_step(y0, pars, prec), prec, progress)
+
+def propagate(problem: Problem, t_end, grid, with_start: bool = True, progress=None) -> Trajectory:
+    """Run a validated :class:`~verify.engine.problem.Problem` through ``grid`` (from t = 0) to ``t_end``.
+
+    ``grid`` is an array at the problem's precision starting at 0 (:func:`solve` makes it from
+    ``t_eval`` / ``n_eval``); ``with_start`` says whether t = 0 is an output.  The integrator is
+    borrowed from :mod:`verify.engine.integrators`; the invariants are evaluated when first read
+    (:class:`verify.engine.invariants.OnDemand`), on every output of the run.
+    """
+    model, prec, pars, y0 = problem.model, problem.precision, problem.params, problem.y0
+    compiled = problem.compiled
+    key, build = integrators.for_model(compiled, problem.tol, events=problem.events,
+                                       high_accuracy=problem.high_accuracy)
+    with integrators.borrowed(key, build, prec.zero(), y0, problem.par_vector) as ta:
+        with heyoka_log.collect() as messages:
+            run = _propagate(ta, grid, t_end, problem.max_step, prec, progress)
+        end = _End(ta.time, list(ta.state), ta.tol)
     t = prec.array(run.times)
     y = np.ascontiguousarray(np.array(run.states).T)
-    fail = _failure(model, compiled, run, t, y, pars, events, messages)
+    fail, normal = _failure(model, compiled, run, t, y, pars, problem.events, messages)
     if fail is not None:
         label, good, message = fail
-        partial = _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, run.steps, ta.tol)
-        raise IntegrationError(message, label, ta.time, list(ta.state), partial)
-    status, label, message, t_events = _interpret(run.outcome, compiled, ta)
-    if not events:
+        partial = _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, run.steps, end.tol)
+        raise IntegrationError(message, label, end.time, end.state, partial)
+    status, label, message, t_events = _interpret(run.outcome, compiled, end)
+    if not problem.events:
         status, label, message = _unstopped(model, t, y, status, label, message)
-
-    values, normal = inv.evaluate(compiled, y, pars)
-    traces = inv.traces(compiled, values, y, pars)
+    lazy = inv.OnDemand(compiled, y, pars, drop_start=not with_start, normal=normal)
     if not with_start:  # t = 0 was integrated from, not asked for
         t, y = t[1:], np.ascontiguousarray(y[:, 1:])
-        normal = None if normal is None else normal[1:]
-        traces = {n: replace(tr, values=tr.values[1:], initial_value=tr.values[0]) for n, tr in traces.items()}
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
-        status=status, message=message, outcome=label, t_events=t_events, steps=run.steps, tol=ta.tol,
-        invariants=traces, normal_force=normal,
+        status=status, message=message, outcome=label, t_events=t_events, steps=run.steps, tol=end.tol,
+        evaluation=lazy,
     )
+
+
+@dataclass(frozen=True)
+class _End:
+    """Where the integrator stopped (read before it is given back to the pool)."""
+
+    time: object
+    state: list
+    tol: object
+
+
+def _as_float(values) -> np.ndarray:
+    """Values of any precision's dtype as doubles (vectorised where numpy can cast the dtype)."""
+    try:
+        return np.asarray(values).astype(float)
+    except (TypeError, ValueError):
+        return np.array([float(v) for v in np.ravel(values)]).reshape(np.shape(values))
 
 
 def _failure(model: Model, compiled, run: _Run, t, y, pars, events: bool, messages):
-    """(outcome, number of valid leading outputs, message) of a failed run, or None.
+    """((outcome, number of valid leading outputs, message) of a failed run or None, normal force).
 
     The guard of the module docstring: heyoka's own failures first, then every returned state
-    against the domain and (events on) the normal force.  At a terminal event's own output the
-    event's function is ~0 with either sign, so that one condition is not applied there.
+    against the domain and (events on) the normal force, which is returned for the record (None
+    with events off or without a contact).  At a terminal event's own output the event's function
+    is ~0 with either sign, so that one condition is not applied there.  Runs on every output of
+    every run, so it works on whole arrays, converted to double as the checks always were.
     """
     name = model.name
-    finite = np.array([all(math.isfinite(float(v)) for v in col) for col in y.T])
+    yf = _as_float(y)
+    finite = np.isfinite(yf).all(axis=0)
     if run.outcome == hy.taylor_outcome.err_nf_state or not finite.all():
         k = int(np.argmin(finite)) if not finite.all() else len(finite) - 1
         last = float(t[max(k - 1, 0)])
         return ("failed:non_finite", k, f"the integration of {name!r} failed after t = {last:.9g}: heyoka "
-                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = {last:.9g}")
+                f"reached a non-finite state ({_first_bad(y[:, k])}); the run is not reliable past t = {last:.9g}"), None
     if run.collapsed:
         k = len(t) - 1
         return ("failed:step_size_collapse", k, f"the integration of {name!r} failed at t = {float(t[k]):.9g}: the "
                 f"step size collapsed (a segment of 2 pi / the fastest initial rate took more than "
                 f"{int(2 * math.pi * COLLAPSE_FACTOR)} steps; the last was {float(run.last_h):.3g} s) -- the motion "
-                f"runs into a singularity of the equations (state {_state_text(y[:, k])})")
+                f"runs into a singularity of the equations (state {_state_text(y[:, k])})"), None
     ev = _event_name(run.outcome, compiled)
     dom = model.domain
     lo, hi = float(dom.theta_min), float(dom.theta_max)
-    th = np.array([float(v) for v in y[0]])
+    th = yf[0]
     inside = (lo < th) & (th < hi)
     if ev in (dom.below, dom.above):
         inside[-1] = True
     detection = [m.text for m in messages if m.event_detection or m.level in ("error", "critical")]
     normal = validation.normal_force(compiled, y, pars) if events else None
-    positive = np.ones(len(th), bool) if normal is None else np.array([float(v) > 0 for v in normal])
+    positive = np.ones(len(th), bool) if normal is None else _as_float(normal) > 0
     if ev == "contact_lost":
         positive[-1] = True
     if not inside.all() and events:
@@ -485,17 +507,17 @@ def _failure(model: Model, compiled, run: _Run, t, y, pars, events: bool, messag
         if detection:
             why += f" (heyoka: {detection[0]})"
         return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} theta = "
-                f"{th[k]:.9g} is outside its domain {lo:.9g} < theta < {hi:.9g}, {why}; the run is not reliable from there")
+                f"{th[k]:.9g} is outside its domain {lo:.9g} < theta < {hi:.9g}, {why}; the run is not reliable from there"), normal
     if not positive.all():
         k = int(np.argmin(positive))
         extra = f" (heyoka: {detection[0]})" if detection else ""
         return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} the normal "
                 f"force N/(Mg) = {float(normal[k]):.6g} <= 0 without the terminal event contact_lost: heyoka's event "
-                f"detection failed{extra}; the run is not reliable from there")
+                f"detection failed{extra}; the run is not reliable from there"), normal
     if detection:
         return ("failed:event_detection", len(t) - 1, f"the integration of {name!r} failed: heyoka's event detection "
-                f"failed during the run ({detection[0]}); an event may have been missed")
-    return None
+                f"failed during the run ({detection[0]}); an event may have been missed"), normal
+    return None, normal
 
 
 def _unstopped(model: Model, t, y, status, label, message):
@@ -534,32 +556,15 @@ def _partial(model, compiled, prec, pars, t_end, t, y, good, label, message, ste
     """The run up to its last valid output, as a Trajectory with the failure's outcome (or None)."""
     keep = max(int(good), 1)
     t, y = t[:keep], np.ascontiguousarray(y[:, :keep])
+    evaluation = inv.OnDemand(compiled, y, pars, drop_start=False)
     try:
-        values, normal = inv.evaluate(compiled, y, pars)
-        traces = inv.traces(compiled, values, y, pars)
+        evaluation.traces  # evaluated now: a record that cannot be evaluated is not returned
     except Exception:  # noqa: BLE001 - a best-effort record of a failed run
         return None
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
-        status=-1, message=message, outcome=label, t_events={}, steps=steps, tol=tol, invariants=traces,
-        normal_force=normal,
+        status=-1, message=message, outcome=label, t_events={}, steps=steps, tol=tol, evaluation=evaluation,
     )
-
-
-def max_step(y0, pars: dict, prec: Precision):
-    """The largest step: one radian of the fastest initial rate (or of sqrt(g)).
-
-    heyoka's step-size rule assumes that Taylor coefficients decay geometrically.  On
-    an exactly steady motion (the Eq. 45 spin-down, a steady precession) every
-    coefficient of theta and the rates vanishes, phi and psi are linear in t, and only
-    x, y keep round-off-sized coefficients that grow like Omega^n/n! before decaying;
-    the rule then takes steps with Omega h of tens or hundreds of radians and sums a
-    truncated series far outside its range (seen: x = -1.2e4 instead of 0 after 1 s of
-    the Eq. 45 state at theta = 0.1 in quad).  Capping Omega h at 1 keeps the truncated
-    terms below 1/p!.  On ordinary motions the cap does not bind (typical Omega h ~ 0.03).
-    """
-    rates = [abs(float(y0[i])) for i in (3, 4, 5)] + [float(pars.get("g", 1)) ** 0.5]
-    return prec.number(1) / prec.number(max(rates))
 
 
 def _grid(t_end, t_eval, n_eval, prec: Precision):
@@ -574,12 +579,18 @@ def _grid(t_end, t_eval, n_eval, prec: Precision):
         if n_eval < 2:
             raise ValueError(f"n_eval={n_eval} must be at least 2 (the start and t_end)")
         n = int(n_eval) - 1
-        pts = [prec.zero()] + [t_end * prec.number(i) / prec.number(n) for i in range(1, n)] + [t_end]
-        for i, (a, b) in enumerate(zip(pts, pts[1:])):
-            if not b > a:
-                raise ValueError(f"n_eval={n_eval}: the grid k t_end / {n} is not strictly increasing in {prec.name} "
-                                 f"(t_{i} = {a}, t_{i + 1} = {b}); allowed: fewer points, a longer t_end or more bits")
-        return prec.array(pts), True
+        if prec.name in ("double", "long") and n < 2 ** 53:  # the same roundings, one array operation
+            inner = (t_end * np.arange(1, n, dtype=prec.fp_type)) / prec.fp_type(n)
+            pts = np.concatenate([[prec.fp_type(0)], inner, [t_end]]).astype(prec.fp_type)
+        else:
+            pts = prec.array([prec.zero()] + [t_end * prec.number(i) / prec.number(n) for i in range(1, n)] + [t_end])
+        rising = pts[1:] > pts[:-1]
+        if not np.all(rising):
+            i = int(np.argmin(rising))
+            a, b = pts[i], pts[i + 1]
+            raise ValueError(f"n_eval={n_eval}: the grid k t_end / {n} is not strictly increasing in {prec.name} "
+                             f"(t_{i} = {a}, t_{i + 1} = {b}); allowed: fewer points, a longer t_end or more bits")
+        return pts, True
     if isinstance(t_eval, (str, bytes)) or not hasattr(t_eval, "__iter__"):
         raise ValueError(f"t_eval={t_eval!r}: allowed: a sequence of times in [0, t_end], strictly increasing")
     pts = []
@@ -606,15 +617,135 @@ def _grid(t_end, t_eval, n_eval, prec: Precision):
     return prec.array(pts), with_start
 
 
-def _interpret(outcome, compiled, ta):
+def _interpret(outcome, compiled, end: _End):
     code = int(outcome)
     names = [name for name, _, _ in compiled.events]
     if outcome == hy.taylor_outcome.time_limit:
         return 0, "ok", "reached t_end", {}
     if -len(names) <= code < 0:
         name = names[-code - 1]
-        return 1, f"event:{name}", f"stopped by the terminal event {name} at t = {ta.time}", {name: ta.time}
+        return 1, f"event:{name}", f"stopped by the terminal event {name} at t = {end.time}", {name: end.time}
     raise IntegrationError(
-        f"the integration of {compiled.model.name!r} failed at t = {ta.time} with outcome {outcome} "
-        f"(state {list(ta.state)})", "failed:" + str(outcome).rsplit(".", 1)[-1], ta.time, list(ta.state)
+        f"the integration of {compiled.model.name!r} failed at t = {end.time} with outcome {outcome} "
+        f"(state {end.state})", "failed:" + str(outcome).rsplit(".", 1)[-1], end.time, end.state
     )
+
+
+# --- runs with more states: segments of a number of radians of the current fastest rate -----------
+
+@dataclass(frozen=True)
+class ExtendedRun:
+    """A run of a model's equations with more states (:func:`propagate_in_turns`).
+
+    ``t`` the start and the output times reached (plus the time of a terminal event that stopped
+    the run); ``y`` one row per state (the eight of STATE_NAMES, phi and psi continuous, then the
+    extra states in their order); ``outcome`` ``"ok"`` or ``"event:<name>"``; ``steps`` Taylor steps.
+    """
+
+    t: np.ndarray
+    y: np.ndarray
+    outcome: str
+    steps: int
+
+
+def propagate_in_turns(problem: Problem, t_eval, extra_states: tuple = (), extra_start=(), theta_stop=None,
+                       segment_radians: float = 32 * math.pi) -> ExtendedRun:
+    """Integrate ``problem`` with ``extra_states`` alongside, to the last of ``t_eval`` or a terminal event.
+
+    ``extra_states`` are (name, sympy right-hand side) pairs (e.g. the work a dissipative couple
+    has done), started at ``extra_start``; ``theta_stop`` (a number at the problem's precision)
+    adds a terminal event ``theta_stop`` where theta falls through it.  Tolerance epsilon, the
+    model's terminal events on, steps at most ``problem.max_step``.
+
+    The run goes output time by output time, each in segments of ``segment_radians`` of the
+    fastest rate at the segment's start (one ``propagate_until`` each); after a segment, phi
+    and psi are moved back by whole turns when they exceed ``segment_radians``, the turns are
+    counted and added back (exactly: the precision's 2 pi times the count) in the returned
+    rows, so they are continuous.  Unlike :func:`solve`'s fixed segments, the segment ends
+    depend on the run's own rates, so the bits of a run depend on its output times.
+    """
+    prec, compiled = problem.precision, problem.compiled
+    key, build = integrators.for_extended(compiled, tuple(extra_states), theta_stop is not None)
+    names = [name for name, _, _ in compiled.events] + (["theta_stop"] if theta_stop is not None else [])
+    pars = compiled.parameter_vector(problem.params, every=True)
+    if theta_stop is not None:
+        pars = prec.array(list(pars) + [theta_stop])
+    start = prec.array(list(problem.y0) + list(extra_start))
+    with integrators.borrowed(key, build, prec.zero(), start, pars) as ta:
+        outcome, steps, times, rows = _in_turns(ta, t_eval, problem.max_step, prec, segment_radians)
+        end = _End(ta.time, list(ta.state), ta.tol)
+    if outcome == hy.taylor_outcome.time_limit:
+        label = "ok"
+    elif -len(names) <= int(outcome) < 0:
+        label = f"event:{names[-int(outcome) - 1]}"
+    else:
+        raise IntegrationError(f"the run of {compiled.model.name!r} failed at t = {end.time} with outcome {outcome}",
+                               "failed:" + str(outcome).rsplit(".", 1)[-1], end.time, end.state)
+    return ExtendedRun(prec.array(times), np.ascontiguousarray(np.array(rows).T), label, steps)
+
+
+def _in_turns(ta, grid, h_max, prec: Precision, segment_radians: float):
+    """(outcome, steps, times, rows) of :func:`propagate_in_turns`; if an event stopped the run its
+    state is the last row."""
+    with mpmath.workprec(prec.bits + 32):
+        two_pi = prec.number(2 * mpmath.pi)
+    turns = {1: 0, 2: 0}
+    times, rows, steps = [ta.time], [np.array(ta.state)], 0
+    for target in grid:
+        while ta.time < target:
+            rate = max(abs(float(ta.state[i])) for i in (3, 4, 5)) + 1.0
+            end = min(target, ta.time + prec.number(segment_radians / rate))
+            res = ta.propagate_until(end, max_delta_t=h_max)
+            outcome, steps = res[0], steps + int(res[3])
+            if outcome != hy.taylor_outcome.time_limit:
+                times.append(ta.time)
+                rows.append(_with_turns(ta.state, turns, two_pi, prec))
+                return outcome, steps, times, rows
+            for i in turns:
+                n = round(float(ta.state[i]) / float(two_pi))
+                if abs(float(ta.state[i])) > segment_radians:
+                    ta.state[i] = ta.state[i] - prec.number(n) * two_pi
+                    turns[i] += n
+        times.append(ta.time)
+        rows.append(_with_turns(ta.state, turns, two_pi, prec))
+    return hy.taylor_outcome.time_limit, steps, times, rows
+
+
+def _with_turns(state, turns, two_pi, prec):
+    row = np.array(state)
+    for i, n in turns.items():
+        row[i] = row[i] + prec.number(n) * two_pi
+    return row
+
+
+# --- any small system through a grid (auxiliary ODEs of the studies) --------------------------------
+
+@dataclass(frozen=True)
+class GridRun:
+    """A run of :func:`through_grid`: ``reached`` whether every grid point was reached, ``outcome``
+    heyoka's outcome as text, ``rows`` the states at the grid points reached (one row each)."""
+
+    reached: bool
+    outcome: str
+    rows: np.ndarray
+
+
+def through_grid(key, system, start, pars, grid, precision="double") -> GridRun:
+    """Integrate a heyoka ``system`` ((variable, expression) pairs) from ``start`` at ``grid[0]``
+    through ``grid`` (tolerance epsilon of ``precision``; no events).
+
+    ``key`` names the system for the integrator pool (:mod:`verify.engine.integrators`): the same
+    key must always mean the same system.  For auxiliary equations of the studies, such as a drift
+    integrated with theta as the independent variable.
+    """
+    prec = parse_precision(precision)
+
+    def build():
+        return hy.taylor_adaptive(list(system), prec.array([0] * len(system)), pars=prec.array([0] * len(pars)),
+                                  tol=prec.zero(), **prec.integrator_kwargs())
+
+    grid = prec.array(grid)
+    with integrators.borrowed(("system", key, prec), build, grid[0], prec.array(start), prec.array(pars)) as ta:
+        res = ta.propagate_grid(grid)
+    rows = res[-1]
+    return GridRun(len(rows) == len(grid), str(res[0]), rows)

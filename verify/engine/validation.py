@@ -242,9 +242,8 @@ def first_problem(model: Model, states, normal=None, shown=None):
 # --- one start at a run's precision (solve) --------------------------------------------------------
 
 def _invariant_rows(compiled, y: np.ndarray, pars: dict) -> np.ndarray:
-    prec = compiled.precision
     n = y.shape[1]
-    p = np.ascontiguousarray(np.repeat(compiled.function_pars(prec.array(pars.values()))[:, None], n, axis=1))
+    p = np.ascontiguousarray(np.repeat(compiled.parameter_vector(pars, for_function=True)[:, None], n, axis=1))
     return compiled.invariant_function(np.ascontiguousarray(y), pars=p)
 
 
@@ -296,6 +295,50 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
     if problem is not None:
         raise InvalidStart(problem[2], problem[1])
     return y0, pars
+
+
+# --- run settings ----------------------------------------------------------------------------------
+
+def positive_number(name: str, value, precision: Precision):
+    """``value`` at ``precision``, refused (``ValueError`` naming ``name``) unless finite and > 0."""
+    try:
+        v = precision.number(value)
+    except (ValueError, TypeError) as err:
+        raise ValueError(f"{name}={value!r}: {err}") from None
+    if not float(v) > 0:
+        raise ValueError(f"{name}={value} must be a positive finite number")
+    return v
+
+
+def tolerance(value, precision: Precision):
+    """The Taylor tolerance at ``precision``: None is its epsilon (heyoka's 0); else eps <= tol < 1.
+
+    Below epsilon nothing is gained (every step rounds at eps) while heyoka's order,
+    ~ -ln(tol)/2 + 1, and with it the compile time grow: tol = 1e-300 in double asks for
+    order ~346, which compiles for a quarter of an hour.
+    """
+    if value is None:
+        return precision.zero()
+    try:
+        exact = mpmath.mpf(str(value).strip()) if isinstance(value, str) else mpmath.mpf(value)
+    except (ValueError, TypeError):
+        exact = None
+    eps = precision.eps
+    allowed = (f"allowed: {eps:.3g} <= tol < 1 (the {precision.name} epsilon 2^{1 - precision.bits} and up; "
+               "for a smaller tolerance choose more bits: quad, or mp:BITS)")
+    if exact is not None and mpmath.isfinite(exact) and 0 < exact < eps:
+        raise ValueError(f"tol={value!r} is below the {precision.name} epsilon: {allowed}")
+    v = positive_number("tol", value, precision)
+    if not float(v) < 1:
+        raise ValueError(f"tol={value!r} is not below 1; {allowed}")
+    return v
+
+
+def flag(name: str, value) -> bool:
+    """A run's switch (``events``, ``high_accuracy``): True or False, nothing else."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name}={value!r}: allowed: True or False")
+    return bool(value)
 
 
 # --- many starts in double (sweeps) ----------------------------------------------------------------

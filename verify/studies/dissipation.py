@@ -72,8 +72,9 @@ from models.symbols import STATE_NAMES, g, phidot, psidot, theta, thetadot
 
 from ..engine import invariants as inv
 from ..engine import validation
-from ..engine.compile import compile_model, symbol_map, to_heyoka
-from ..engine.single import IntegrationError, max_step, resolve_parameters
+from ..engine.compile import compile_model, to_heyoka
+from ..engine.problem import Problem
+from ..engine.single import propagate_in_turns, resolve_parameters, through_grid
 from ..precision import parse_precision
 from .spindown import spindown
 
@@ -93,8 +94,9 @@ A_MAX = 1e-3
 #: leading powers (O(theta^2) terms of the family law, O(theta^1/2 .. theta^3/2) ones of omega3).
 FIT_TOP = 0.05
 LEVELS_PER_DECADE = 40
-#: Rebase phi, psi by whole turns after this many radians (keeps them below the rates,
-#: so they never loosen heyoka's step-size control; see verify.engine.single).
+#: Segments of this many radians of the fastest rate; phi, psi rebased by whole turns beyond it
+#: (keeps them below the rates, so they never loosen heyoka's step-size control; see
+#: verify.engine.single.propagate_in_turns).
 _SEGMENT_RADIANS = 32 * math.pi
 
 
@@ -327,13 +329,13 @@ def _transport_system(name: str):
 def _transport(name: str, pv: dict, th0: float, levels: np.ndarray):
     """Integrate the transported drift from th0 down through the levels and on to 1e-6 of the
     last one; the rest to theta = 0 (a (1e-10)^n fraction of t0) from the family law."""
-    pars = [float(pv["k"]), float(pv["g"]), float(pv["c"])]
-    ta = hy.taylor_adaptive(_transport_system(name), [0.0, 0.0, 0.0], pars=pars, time=th0, tol=0.0)
+    pars = [float(pv["k"]), float(pv["g"]), float(pv["c"])]  # par[0], par[1], par[2] of _transport_system
     tiny = float(levels[-1]) * 1e-6
-    res = ta.propagate_grid(np.concatenate([[th0], levels, [tiny]]))
-    rows = res[-1]
-    if len(rows) != len(levels) + 2:
-        raise RuntimeError(f"the transported drift stopped early ({res[0]})")
+    run = through_grid(("dissipation transport", name), _transport_system(name), [0.0, 0.0, 0.0], pars,
+                       np.concatenate([[th0], levels, [tiny]]))
+    rows = run.rows
+    if not run.reached:
+        raise RuntimeError(f"the transported drift stopped early ({run.outcome})")
     fl = family_law(name)
     vals = {theta0: sp.Float(repr(tiny), 30), disk.k: pv["k"], g: pv["g"], C_SYMBOL: pv["c"]}
     rest_t = float(sp.N(fl.time_to_singularity.subs(vals)))
@@ -391,18 +393,6 @@ class WorkRun:
         return self.balance_in_eps <= self.balance_bound_in_eps
 
 
-@lru_cache(maxsize=None)
-def _augmented(name: str, work_exponent, precision):
-    """The model's eight equations (compiled as for ``solve``), W' and the theta_stop event."""
-    model = dissipative_disk(name)
-    compiled = compile_model(model, precision)
-    W = hy.make_vars("W")
-    mapping = symbol_map(model, compiled.variables)
-    system = list(compiled.system) + [(W, to_heyoka(work_rate(name, work_exponent), mapping))]
-    stop = mapping[theta] - hy.par[len(model.parameters)]  # theta_stop is the last runtime parameter
-    return model, compiled, system, stop
-
-
 def integrate_with_work(name: str, t_eval, c=None, state=None, *, params=None, theta_stop: str = THETA_STOP,
                         precision: str = "double", work_exponent=None) -> WorkRun:
     """Integrate the ``name`` disk and the work W of its couple until the last of ``t_eval``.
@@ -427,7 +417,8 @@ def integrate_with_work(name: str, t_eval, c=None, state=None, *, params=None, t
         Exponent of sin(theta) in W's integrand; only for negative controls (default: the law's n).
     """
     prec = parse_precision(precision)
-    model, compiled, system, stop = _augmented(name, work_exponent, prec)
+    model = dissipative_disk(name)
+    compiled = compile_model(model, prec)
     values = dict(params or {})
     if c is not None:
         values["c"] = c
@@ -442,69 +433,18 @@ def integrate_with_work(name: str, t_eval, c=None, state=None, *, params=None, t
     grid = [prec.number(v) for v in t_eval]
     if not grid or not float(grid[0]) > 0 or any(not b > a for a, b in zip(grid, grid[1:])):
         raise ValueError("t_eval must be a non-empty, strictly increasing sequence of times > 0")
-    events = compiled.t_events() + [hy.t_event(stop, direction=hy.event_direction.negative, fp_type=prec.fp_type)]
-    names = [e[0] for e in compiled.events] + ["theta_stop"]
+    problem = Problem(model, prec, pars, y0, prec.zero())
     start = time.perf_counter()
-    ta = hy.taylor_adaptive(system, prec.array(list(y0) + [0]), pars=prec.array(list(pars.values()) + [th_stop]),
-                            tol=prec.zero(), t_events=events, **prec.integrator_kwargs())
-    outcome, steps, times, rows = _advance(ta, grid, max_step(y0, pars, prec), prec)
+    run = propagate_in_turns(problem, grid, (("W", work_rate(name, work_exponent)),), (prec.zero(),), th_stop,
+                             _SEGMENT_RADIANS)
     wall = time.perf_counter() - start
-    y = np.ascontiguousarray(np.array(rows).T)
+    y = run.y
     values8, normal = inv.evaluate(compiled, np.ascontiguousarray(y[:8]), pars)
     energy = values8["energy"]
     balance = max(abs(float(e + w - energy[0])) for e, w in zip(energy, y[8])) / abs(float(energy[0]))
     n = get_law(name).exponent if work_exponent is None else int(work_exponent)
     return WorkRun(name, float(pars["c"]), {k: prec.to_text(v) for k, v in pars.items()}, prec.name, n,
-                   prec.array(times), y, energy, normal, _outcome_label(outcome, names, ta), steps, balance,
-                   prec.eps, wall)
-
-
-def _advance(ta, grid, h_max, prec):
-    """Propagate through ``grid`` in segments of ~_SEGMENT_RADIANS of the fastest rate,
-    moving whole turns of phi and psi out of the state between segments (as
-    :func:`verify.engine.single.solve` does, for the same reason); steps at most ``h_max``
-    (:func:`verify.engine.single.max_step`: the start is an exactly steady motion).
-
-    Returns (outcome, steps, times, rows), rows with phi, psi continuous; if an event
-    stopped the run its state is the last row."""
-    with mpmath.workprec(prec.bits + 32):
-        two_pi = prec.number(2 * mpmath.pi)
-    turns = {1: 0, 2: 0}
-    times, rows, steps = [ta.time], [np.array(ta.state)], 0
-    for target in grid:
-        while ta.time < target:
-            rate = max(abs(float(ta.state[i])) for i in (3, 4, 5)) + 1.0
-            end = min(target, ta.time + prec.number(_SEGMENT_RADIANS / rate))
-            res = ta.propagate_until(end, max_delta_t=h_max)
-            steps += int(res[3])
-            if res[0] != hy.taylor_outcome.time_limit:
-                times.append(ta.time)
-                rows.append(_restore(ta.state, turns, two_pi, prec))
-                return res[0], steps, times, rows
-            for i in turns:
-                n = round(float(ta.state[i]) / float(two_pi))
-                if abs(float(ta.state[i])) > _SEGMENT_RADIANS:
-                    ta.state[i] = ta.state[i] - prec.number(n) * two_pi
-                    turns[i] += n
-        times.append(ta.time)
-        rows.append(_restore(ta.state, turns, two_pi, prec))
-    return hy.taylor_outcome.time_limit, steps, times, rows
-
-
-def _restore(state, turns, two_pi, prec):
-    row = np.array(state)
-    for i, n in turns.items():
-        row[i] = row[i] + prec.number(n) * two_pi
-    return row
-
-
-def _outcome_label(outcome, names, ta) -> str:
-    if outcome == hy.taylor_outcome.time_limit:
-        return "ok"
-    code = int(outcome)
-    if -len(names) <= code < 0:
-        return f"event:{names[-code - 1]}"
-    raise IntegrationError(f"the dissipative run failed at t = {ta.time} with outcome {outcome}")
+                   run.t, y, energy, normal, run.outcome, run.steps, balance, prec.eps, wall)
 
 
 # --- 4. fitted exponents ------------------------------------------------------------------------

@@ -495,11 +495,9 @@ def variational_w2(name: str, motion: str, rate, params=None, precision: str = "
     accelerations: the derivatives are heyoka's, along the integrated (not assumed) motion.
     Not available for the sleeping motion (Euler angles are singular at theta = 0).
     """
-    import heyoka as hy
     import numpy as np
 
-    from verify.engine.compile import compile_model
-    from verify.engine.single import max_step, resolve_parameters, resolve_state
+    from verify.engine.conditioning import transition_matrix
     from verify.precision import parse_precision
 
     if motion == "sleeping":
@@ -513,18 +511,7 @@ def variational_w2(name: str, motion: str, rate, params=None, precision: str = "
         a, c, d, e, ff = f(*(mpmath.mpf(steady[k]) for k in ("theta", "phidot", "psidot")))
         w2 = -(a + c * e + d * ff)
         T = mpmath.pi / (2 * mpmath.sqrt(abs(w2)))
-    pars = resolve_parameters(model, params, prec)
-    y0 = resolve_state(model, steady, prec)
-    compiled = compile_model(model, prec)
-    vsys = hy.var_ode_sys(list(compiled.system), hy.var_args.vars, order=1)
-    kwargs = prec.integrator_kwargs()
-    kwargs["compact_mode"] = True
-    ta = hy.taylor_adaptive(vsys, y0, pars=compiled.system_pars(prec.array(pars.values())), **kwargs)
-    outcome = ta.propagate_until(prec.number(mpmath.nstr(T, 40)), max_delta_t=max_step(y0, pars, prec))[0]
-    if outcome != hy.taylor_outcome.time_limit:
-        raise RuntimeError(f"variational run of {name} {motion} stopped with {outcome}")
-    n = len(y0)
-    phi = ta.state[ta.get_vslice(order=1)].reshape(n, n)
+    phi = transition_matrix(model, steady, params, prec.number(mpmath.nstr(T, 40)), prec)
     idx = (0, 3, 4, 5)  # theta, thetadot, phidot, psidot in STATE order
     block = [[prec.to_mpf(phi[i, j]) for j in idx] for i in idx]
     with mpmath.workdps(max(45, prec.digits + 5)):
