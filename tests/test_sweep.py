@@ -282,10 +282,10 @@ def test_energy_drift_column_sees_unaccounted_work(tmp_path, monkeypatch):
 
     reduce = engine._reduce
 
-    def without_work(spec, sysm, index, grid, samples, *rest):
-        samples = samples.copy()
+    def without_work(spec, sysm, indices, grid, samples, *rest):
+        samples = samples.copy()  # (grid, states, lanes)
         samples[:, 8] = 0.0
-        return reduce(spec, sysm, index, grid, samples, *rest)
+        return reduce(spec, sysm, indices, grid, samples, *rest)
 
     monkeypatch.setattr(engine, "_reduce", without_work)
     spec = short_air_drag_sweep(tmp_path)
