@@ -34,9 +34,12 @@ the chunking.
 """
 from __future__ import annotations
 
+import copy
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
-from typing import Callable, Iterator, Optional, Sequence
+from types import SimpleNamespace
+from typing import Iterator, Optional, Sequence
 
 import heyoka as hy
 import numpy as np
@@ -167,39 +170,53 @@ class Batch:
                 and self.output.shape[0] == n_grid)
 
 
-def _generator(states, pars, first: int, batch_size: int) -> Callable:
-    """The ensemble's generator: iteration i runs batch first + i (fixed columns: deterministic)."""
-    def gen(ta_copy, i):
-        cols = slice((first + i) * batch_size, (first + i + 1) * batch_size)
-        ta_copy.set_time(0.0)
-        ta_copy.state[:] = states[:, cols]
-        ta_copy.pars[:] = pars[:, cols]
-        return ta_copy
-    return gen
-
-
 def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[int] = None,
                    max_delta_t: Optional[float] = None, max_steps: Optional[int] = None) -> Iterator[tuple]:
-    """Run every lane on ``grid`` by ensembles of batches; yield (batches, heyoka's messages) per chunk.
+    """Run every lane on ``grid``, batches on threads; yield (batches, heyoka's messages) per chunk.
 
     ``states`` (n_states, n_lanes) and ``pars`` (n_pars, n_lanes) hold every lane's start and
     parameters, n_lanes a multiple of the template's batch size (:func:`pad_lanes`).  ``chunk``
-    batches run per ensemble call (None: all at once), so that only their output is held at once.
+    batches run per call (None: all at once), so that only their output is held at once.
+
+    Each thread copies the template once and reuses its copy for a contiguous share of the
+    batches (time, state, parameters and event cooldowns reset for each): heyoka's
+    ``ensemble_propagate_grid_batch`` copies the template for every batch, holding the GIL
+    (~1 ms for an integrator with Python event callbacks), which serialises the threads.  A
+    batch's result depends on its own lanes only, so the sharing changes no bit.
     """
     bs = template.batch_size
     n_batches = states.shape[1] // bs
     chunk = n_batches if chunk is None else chunk
-    options = {"max_workers": max(1, int(threads))}
+    options = {}
     if max_delta_t is not None:
         options["max_delta_t"] = max_delta_t
     if max_steps is not None:
         options["max_steps"] = max_steps
-    for first in range(0, n_batches, chunk):
-        count = min(chunk, n_batches - first)
-        with heyoka_log.collect() as messages:
-            results = hy.ensemble_propagate_grid_batch(template, grid, count, _generator(states, pars, first, bs),
-                                                       **options)
-        yield [Batch(first + i, res[0], res[-1]) for i, res in enumerate(results)], list(messages)
+    grid_lanes = np.ascontiguousarray(np.repeat(np.asarray(grid, float)[:, None], bs, axis=1))
+    workers = max(1, int(threads))
+    copies = [copy.deepcopy(template) for _ in range(workers)]
+
+    def share(worker: int, batches) -> list:
+        ta, out = copies[worker], []
+        for b in batches:
+            cols = slice(b * bs, (b + 1) * bs)
+            ta.set_time(0.0)
+            if ta.with_events:
+                ta.reset_cooldowns()
+            ta.state[:] = states[:, cols]
+            ta.pars[:] = pars[:, cols]
+            output = ta.propagate_grid(grid_lanes, **options)[-1]
+            local = SimpleNamespace(time=ta.time.copy(), state=ta.state.copy(), pars=ta.pars.copy(),
+                                    propagate_res=list(ta.propagate_res), batch_size=bs)
+            out.append(Batch(b, local, output))
+        return out
+
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        for first in range(0, n_batches, chunk):
+            shares = np.array_split(np.arange(first, min(first + chunk, n_batches)), workers)
+            with heyoka_log.collect() as messages:
+                parts = list(pool.map(share, range(workers), shares))
+            yield [b for part in parts for b in part], list(messages)
 
 
 def alone(template, grid, state_col, pars_col, max_delta_t=None, max_steps=None) -> tuple:
