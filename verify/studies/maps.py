@@ -13,40 +13,28 @@ right-hand side of these four), so the map integrates the reduced 4-dimensional 
 
 How it runs
 -----------
-* The reduced system is compiled once per model in double as a ``taylor_adaptive_batch``
+* The reduced system is compiled once per model in double by :mod:`verify.engine.batch`
   (batch size twice :func:`verify.engine.lanes.simd_width`: two SIMD registers a lane group; measured on
   a 2-core AVX2 machine, 10^4 disk runs take 7.2 s with 8 lanes and 9.0 s with 4, bit for bit the
-  same results), parameters as runtime ``par[i]``: the model's
-  parameters in model order, then five per-lane bookkeeping parameters (alive, reason,
-  t_left, lower and upper bound; below).
-* The grid of (tilt, rate) points is cut into batches and run by
-  ``ensemble_propagate_grid_batch`` on threads; each batch's dense output on a fixed time
-  grid is reduced to its maximum deviation as soon as its chunk of the ensemble returns.
+  same results), parameters as runtime ``par[i]``: the model's parameters in model order, then
+  five per-lane parameters (alive, reason, t_left, lower and upper bound).
+* The grid of (tilt, rate) points is cut into batches and run on threads by
+  :func:`verify.engine.batch.propagate_grid`; each batch's dense output on a fixed time grid is
+  reduced to its maximum deviation as soon as its chunk returns.
 * A run *leaves* when theta reaches theta_steady -+ ``cap`` or an end of the model's domain
-  (whichever is nearer), or when the normal force vanishes (models with a contact).
-
-Terminal events in batch mode
------------------------------
-In heyoka 7.13 a terminal event that stops the integration in one lane stops the whole
-batch: the lane sits at its event time, the others at the end of their own last step, and
-``propagate_grid`` fills the remaining rows of *every* lane with NaN.  Restarting would
-leave lanes at different times and the grid unaligned.  So the events here are terminal
-events whose callback returns True (do not stop): the callback freezes its lane only --
-it zeroes the lane's "alive" parameter, which multiplies every right-hand side (x * 1.0 = x
-exactly, so a live lane integrates the plain equations),
-records why and when in two more per-lane parameters, and moves the lane to the middle of
-its bounds with thetadot = 0 so that a frozen lane never sits on a singular end of the
-domain.  A cooldown longer than the run keeps the event from firing again in that lane.
-The whole batch then runs to ``t_end`` in one ``propagate_grid`` call.
+  (whichever is nearer), or when the normal force vanishes (models with a contact).  heyoka 7.13
+  stops a whole batch on one lane's terminal event, so the events freeze their own lane instead
+  (:class:`verify.engine.batch.Freeze`): it is parked in the middle of its bounds with
+  thetadot = 0, so that a frozen lane never sits on a singular end of the domain, and the whole
+  batch runs to ``t_end`` in one ``propagate_grid`` call.
 
 Determinism
 -----------
-Each ensemble iteration builds its integrator from a copy of the same template and fills
-its lanes from fixed columns of precomputed arrays, so the result of a point does not depend
-on thread scheduling, and the reductions are plain numpy on fixed-order arrays: two runs give
-identical bytes.  Lanes of a batch do not interact either (each has its own step size and
-events): measured, a point gives the same bytes with other batch partners (rates reversed)
-and with batch size 4 instead of 8.
+Every batch starts from a copy of the same template with its lanes filled from fixed columns of
+precomputed arrays, so the result of a point does not depend on thread scheduling, and the
+reductions are plain numpy on fixed-order arrays: two runs give identical bytes.  Lanes of a
+batch do not interact either (each has its own step size and events): measured, a point gives
+the same bytes with other batch partners (rates reversed) and with batch size 4 instead of 8.
 """
 from __future__ import annotations
 
