@@ -80,6 +80,9 @@ EXTRA = ("alive", "reason", "t_stop", "theta_stop or theta_max")
 WINDOWS = 20  # a run without nutation is read over 20 equal windows
 NUTATIONS_PER_WINDOW = 12  # otherwise over windows of 12 nutations (see orbit_windows)
 NUTATION_FLOOR = 1e-9  # rad: a theta spread below this is no nutation
+#: Batches reduced together: enough lanes for numpy to pay, few enough that a chunk's samples are
+#: held about once (the store's memory estimate assumes 1.5 times the dense output).
+REDUCE_GROUP = 16
 TH, PH, PS, THD, PHD, PSD, X, Y = range(8)
 
 
@@ -361,29 +364,37 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     grid = np.linspace(0.0, spec.t_end, spec.samples)
     options = {"max_delta_t": batch.step_cap([fastest_rate(spec)]), "max_steps": step_budget(spec)}
 
-    failed = {}  # lane -> (outcome, time)
-    samples = np.empty((len(grid), sysm.n_states, n))
-    final_pars = np.empty((lane_pars.shape[0], n))
     (batches, messages), = batch.propagate_grid(sysm.template, lane_states, lane_pars, grid, threads, **options)
-    for b in batches:
-        lanes = range(b.columns.start, min(b.columns.stop, n))
-        if not messages and _batch_ok(b, len(grid)):
-            samples[:, :, lanes.start:lanes.stop] = b.output[:, :, : len(lanes)]
-            final_pars[:, lanes.start:lanes.stop] = b.local.pars[:, : len(lanes)]
-            continue
-        for k in lanes:  # again, each lane alone (module docstring)
-            one, warned = batch.alone(sysm.template, grid, lane_states[:, k], lane_pars[:, k], **options)
-            failure = batch.lane_failure(one, 0, sysm.lanes, warned)
-            if failure is not None:
-                failed[k] = failure
+    rows = []
+    for first in range(0, len(batches), REDUCE_GROUP):  # a group at a time: memory stays near the output's
+        group = batches[first:first + REDUCE_GROUP]
+        lanes = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
+        samples = np.empty((len(grid), sysm.n_states, len(lanes)))
+        final_pars = np.empty((lane_pars.shape[0], len(lanes)))
+        failed = {}  # lane -> (outcome, time)
+        for b in group:
+            cols = np.arange(b.columns.start, min(b.columns.stop, n))
+            at = cols - lanes[0]
+            if not messages and _batch_ok(b, len(grid)):
+                samples[:, :, at] = b.output[:, :, : len(cols)]
+                final_pars[:, at] = b.local.pars[:, : len(cols)]
                 continue
-            samples[:, :, k] = one.output[:, :, 0] if one.output.shape[0] == len(grid) else np.nan
-            final_pars[:, k] = one.local.pars[:, 0]
-    good = np.array([k not in failed for k in range(n)])
-    rows = dict(zip(np.flatnonzero(good), _reduce(spec, sysm, idx[good], grid, samples[:, :, good],
-                                                  final_pars[:, good], model_pars[:, good], refs[good])))
-    rows.update({k: _failed_row(spec, indices[k], *failure) for k, failure in failed.items()})
-    return [rows[k] for k in range(n)]
+            for k, j in zip(cols, at):  # again, each lane alone (module docstring)
+                one, warned = batch.alone(sysm.template, grid, lane_states[:, k], lane_pars[:, k], **options)
+                failure = batch.lane_failure(one, 0, sysm.lanes, warned)
+                if failure is not None:
+                    failed[j] = failure
+                    continue
+                samples[:, :, j] = one.output[:, :, 0] if one.output.shape[0] == len(grid) else np.nan
+                final_pars[:, j] = one.local.pars[:, 0]
+        for i in range(first, first + len(group)):
+            batches[i] = None  # its output is copied: let it go
+        good = np.array([j not in failed for j in range(len(lanes))])
+        reduced = iter(_reduce(spec, sysm, idx[lanes[good]], grid, samples[:, :, good], final_pars[:, good],
+                               model_pars[:, lanes[good]], refs[lanes[good]]))
+        rows += [_failed_row(spec, indices[lanes[j]], *failed[j]) if j in failed else next(reduced)
+                 for j in range(len(lanes))]
+    return rows
 
 
 def _batch_ok(b: batch.Batch, n_grid: int) -> bool:
