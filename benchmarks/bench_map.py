@@ -1,4 +1,4 @@
-"""Benchmark: a 100 x 100 stability map (10^4 runs of 10 s) by heyoka batch mode + ensemble.
+"""Benchmark: a 100 x 100 stability map (10^4 runs of 10 s) by heyoka batch mode on threads.
 
 The issue's target: "a stability map of 10^4 trajectories of 10 s for the disk in under 10 s
 on 2 cores (heyoka batch plus ensemble)".  Prints the map's wall time and throughput, and,
@@ -10,7 +10,8 @@ ratios, not seconds), the same work done
 * by batch mode without the ensemble: one batch integrator reused serially over a subset;
 * by the ensemble on one thread (what the second core adds);
 * by plain Python threads that each reuse one batch integrator for a contiguous share of the
-  batches: what heyoka's ensemble costs by deep-copying the integrator for every batch (a
+  batches, written out here as a cross-check of :func:`verify.engine.batch.propagate_grid`, which
+  runs the map the same way (heyoka's ensemble would deep-copy the integrator for every batch: a
   copy takes ~0.8 ms and holds the GIL, so copies do not overlap);
 * with the step cap of ``verify.engine.single.max_step`` (1 / fastest rate; the map runs without:
   does the cap cost or change anything?).

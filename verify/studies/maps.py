@@ -13,40 +13,28 @@ right-hand side of these four), so the map integrates the reduced 4-dimensional 
 
 How it runs
 -----------
-* The reduced system is compiled once per model in double as a ``taylor_adaptive_batch``
+* The reduced system is compiled once per model in double by :mod:`verify.engine.batch`
   (batch size twice :func:`verify.engine.lanes.simd_width`: two SIMD registers a lane group; measured on
   a 2-core AVX2 machine, 10^4 disk runs take 7.2 s with 8 lanes and 9.0 s with 4, bit for bit the
-  same results), parameters as runtime ``par[i]``: the model's
-  parameters in model order, then five per-lane bookkeeping parameters (alive, reason,
-  t_left, lower and upper bound; below).
-* The grid of (tilt, rate) points is cut into batches and run by
-  ``ensemble_propagate_grid_batch`` on threads; each batch's dense output on a fixed time
-  grid is reduced to its maximum deviation as soon as its chunk of the ensemble returns.
+  same results), parameters as runtime ``par[i]``: the model's parameters in model order, then
+  five per-lane parameters (alive, reason, t_left, lower and upper bound).
+* The grid of (tilt, rate) points is cut into batches and run on threads by
+  :func:`verify.engine.batch.propagate_grid`; each batch's dense output on a fixed time grid is
+  reduced to its maximum deviation as soon as its chunk returns.
 * A run *leaves* when theta reaches theta_steady -+ ``cap`` or an end of the model's domain
-  (whichever is nearer), or when the normal force vanishes (models with a contact).
-
-Terminal events in batch mode
------------------------------
-In heyoka 7.13 a terminal event that stops the integration in one lane stops the whole
-batch: the lane sits at its event time, the others at the end of their own last step, and
-``propagate_grid`` fills the remaining rows of *every* lane with NaN.  Restarting would
-leave lanes at different times and the grid unaligned.  So the events here are terminal
-events whose callback returns True (do not stop): the callback freezes its lane only --
-it zeroes the lane's "alive" parameter, which multiplies every right-hand side (x * 1.0 = x
-exactly, so a live lane integrates the plain equations),
-records why and when in two more per-lane parameters, and moves the lane to the middle of
-its bounds with thetadot = 0 so that a frozen lane never sits on a singular end of the
-domain.  A cooldown longer than the run keeps the event from firing again in that lane.
-The whole batch then runs to ``t_end`` in one ``propagate_grid`` call.
+  (whichever is nearer), or when the normal force vanishes (models with a contact).  heyoka 7.13
+  stops a whole batch on one lane's terminal event, so the events freeze their own lane instead
+  (:class:`verify.engine.batch.Freeze`): it is parked in the middle of its bounds with
+  thetadot = 0, so that a frozen lane never sits on a singular end of the domain, and the whole
+  batch runs to ``t_end`` in one ``propagate_grid`` call.
 
 Determinism
 -----------
-Each ensemble iteration builds its integrator from a copy of the same template and fills
-its lanes from fixed columns of precomputed arrays, so the result of a point does not depend
-on thread scheduling, and the reductions are plain numpy on fixed-order arrays: two runs give
-identical bytes.  Lanes of a batch do not interact either (each has its own step size and
-events): measured, a point gives the same bytes with other batch partners (rates reversed)
-and with batch size 4 instead of 8.
+Every batch starts from a copy of the same template with its lanes filled from fixed columns of
+precomputed arrays, so the result of a point does not depend on thread scheduling, and the
+reductions are plain numpy on fixed-order arrays: two runs give identical bytes.  Lanes of a
+batch do not interact either (each has its own step size and events): measured, a point gives
+the same bytes with other batch partners (rates reversed) and with batch size 4 instead of 8.
 """
 from __future__ import annotations
 
@@ -66,6 +54,7 @@ from models import get_model
 from models.symbols import phidot, psidot, theta, thetadot
 
 from . import thresholds
+from ..engine import batch
 from ..engine.lanes import simd_width
 
 MOTIONS = thresholds.MOTIONS
@@ -216,37 +205,18 @@ def reduced_system(name: str):
     return tuple(variables), tuple(system), tuple(events), n
 
 
-class _Freeze:
-    """Terminal-event callback that freezes its lane and lets the batch run on (module docstring)."""
-
-    def __init__(self, n_model_pars: int, code: int):
-        self.n = n_model_pars
-        self.code = float(code)
-
-    def __call__(self, ta, d_sgn, lane):
-        n = self.n
-        pars, state = ta.pars, ta.state
-        if pars[n, lane] == 0.0:  # already frozen (two events in one step)
-            return True
-        pars[n, lane] = 0.0
-        pars[n + 1, lane] = self.code
-        pars[n + 2, lane] = ta.time[lane]
-        state[0, lane] = 0.5 * (pars[n + 3, lane] + pars[n + 4, lane])
-        state[1, lane] = 0.0
-        return True
-
-
 @lru_cache(maxsize=None)
 def template(name: str, batch_size: int, cooldown: float):
-    """A batch integrator of the reduced system (compiled once; copied by every ensemble iteration)."""
+    """A batch integrator of the reduced system (compiled once; copied by every ensemble iteration).
+
+    A frozen lane is parked in the middle of its bounds with thetadot = 0, so that it never sits
+    on a singular end of the domain.
+    """
     variables, system, events, n = reduced_system(name)
     model = get_model(name)
-    t_events = [hy.t_event_batch(ex, direction=d, callback=_Freeze(n, i + 1), cooldown=cooldown)
-                for i, (_, ex, d) in enumerate(events)]
-    state = np.ones((4, batch_size))
-    pars = np.zeros((n + len(_EXTRA), batch_size))
-    pars[: n] = np.array([float(p.default) for p in model.parameters])[:, None]
-    return hy.taylor_adaptive_batch(list(system), state, pars=pars, t_events=t_events)
+    return batch.batch_system(system, events, batch.Lanes(n, n + 1, n + 2), n + len(_EXTRA), batch_size, cooldown, np.ones(4),
+                              [float(p.default) for p in model.parameters], park=((1, 0.0),),
+                              park_between=(0, n + 3, n + 4))
 
 
 # --- the grid of runs ------------------------------------------------------------------------
@@ -373,12 +343,13 @@ def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: di
         k = problem[0]
         raise validation.InvalidStart(f"map point rate = {float(rates[k % len(rates)])!r}, tilt = "
                                       f"{float(tilts[k // len(rates)])!r}: {problem[2]}", problem[1])
-    fastest = max(float(np.max(np.abs(y0[2:]))), math.sqrt(dict(zip(mdl.parameter_names, pars)).get("g", 1.0)))
+    rates, g = y0[2:].ravel(), dict(zip(mdl.parameter_names, pars)).get("g", 1.0)
     states, lane_pars = _lane_arrays(y0, bounds, pars, batch_size)
     n = y0.shape[1]
     ref = np.tile(ths, len(tilts))
     ref = np.concatenate([ref, np.full(states.shape[1] - n, ref[-1])])
-    return Runs(model, states, lane_pars, ref, sample_times(t_end, fastest), 1.0 / fastest if step_cap else None,
+    return Runs(model, states, lane_pars, ref, sample_times(t_end, batch.fastest_rate(rates, g)),
+                batch.step_cap(rates, g) if step_cap else None,
                 n, len(pars), batch_size, ths, tuple(pars))
 
 
@@ -392,43 +363,21 @@ def propagate(name, states, pars, ref, grid, batch_size, threads, step_cap, chun
     the lanes' final parameters -- alive, reason, t_left --, batch steps taken in all).
     """
     ta = template(name, batch_size, 2.0 * float(grid[-1]) + 1.0)  # the cooldown of Runs.cooldown
-    n_batches = states.shape[1] // batch_size
-    kwargs = {"max_workers": threads}
-    if step_cap is not None:
-        kwargs["max_delta_t"] = step_cap
     deviation = np.empty(states.shape[1])
     final_pars = np.empty_like(pars)
     steps = 0
-    for first in range(0, n_batches, chunk):
-        count = min(chunk, n_batches - first)
-        gen = _generator(states, pars, first, batch_size)
-        for i, res in enumerate(hy.ensemble_propagate_grid_batch(ta, grid, count, gen, **kwargs)):
-            cols = slice((first + i) * batch_size, (first + i + 1) * batch_size)
-            deviation[cols], final_pars[:, cols], n_steps = _reduce(name, first + i, res, ref[cols], len(grid))
-            steps += n_steps
+    for batches, _ in batch.propagate_grid(ta, states, pars, grid, threads, chunk, max_delta_t=step_cap):
+        for b in batches:
+            if not b.complete(len(grid)):
+                local = b.local
+                raise RuntimeError(f"batch {b.index} of the {name!r} map stopped with "
+                                   f"{[r[0] for r in local.propagate_res]} at t = {list(local.time)} "
+                                   f"(state {local.state.tolist()})")
+            cols = b.columns
+            deviation[cols] = np.max(np.abs(b.output[:, 0, :] - ref[None, cols]), axis=0)
+            final_pars[:, cols] = b.local.pars
+            steps += b.steps
     return deviation, final_pars, steps
-
-
-def _generator(states, pars, first: int, batch_size: int):
-    """The ensemble's generator: iteration i runs batch first + i (fixed columns: deterministic)."""
-    def gen(ta_copy, i):
-        cols = slice((first + i) * batch_size, (first + i + 1) * batch_size)
-        ta_copy.set_time(0.0)
-        ta_copy.state[:] = states[:, cols]
-        ta_copy.pars[:] = pars[:, cols]
-        return ta_copy
-    return gen
-
-
-def _reduce(name, batch: int, res, ref, n_grid: int):
-    """One ensemble result -> (max |theta - ref| per lane, final parameters, steps of the batch)."""
-    local, out = res[0], res[-1]
-    outcomes = [r[0] for r in local.propagate_res]
-    if any(o != hy.taylor_outcome.time_limit for o in outcomes) or out.shape[0] != n_grid:
-        raise RuntimeError(f"batch {batch} of the {name!r} map stopped with {outcomes} at t = "
-                           f"{list(local.time)} (state {local.state.tolist()})")
-    steps = max(int(r[3]) for r in local.propagate_res)
-    return np.max(np.abs(out[:, 0, :] - ref[None, :]), axis=0), local.pars, steps
 
 
 # --- the map ----------------------------------------------------------------------------------

@@ -1,21 +1,22 @@
-"""Run one chunk of a sweep: heyoka batch integrators over an ensemble of threads, then reductions.
+"""Run one chunk of a sweep on the batch engine (:mod:`verify.engine.batch`), then its rows.
 
 The full state (theta, phi, psi, thetadot, phidot, psidot, x, y), plus the work W of a
 dissipative term when the model has one, is integrated in double by
-``ensemble_propagate_grid_batch``: SIMD lanes within a batch integrator, batches on threads.
-Parameters are runtime ``par[i]`` (the model's, in model order, then four per-lane
-bookkeeping values: alive, reason, t_stop, theta_stop), so one compiled integrator serves
-every point of every sweep of the model.
+:func:`verify.engine.batch.propagate_grid`: SIMD lanes within a batch integrator, batches on
+threads.  Parameters are runtime ``par[i]`` (the model's, in model order, then the per-lane
+bookkeeping: reason, t_stop, alive, and theta_stop when the spec has a ``[stop]``), so one
+compiled integrator serves every point of every sweep of the model.
 
-Terminal events in batch mode (as in :mod:`verify.studies.maps`): heyoka 7.13 stops the whole
-batch when one lane's terminal event fires, so the events here return "continue" and freeze
-their own lane instead -- alive = 0 multiplies every right-hand side (x * 1.0 = x exactly
-for live lanes), the reason and the time are recorded in the lane's parameters, and the
-lane is moved to the middle of the model's domain (thetadot = psidot = 0, phidot = 1: a rocking
-rate of exactly 0 would put |omega_perp| on the singular point of its square root) so that a
-frozen lane never sits on a singular configuration.  Samples after a lane's stop time are discarded by the
-reductions.  The events: the model's domain ends, the optional ``[stop] theta_below``, and
-the loss of contact (N = 0) where the model has a contact.
+Terminal events freeze their own lane (:class:`verify.engine.batch.Freeze`): the lane is parked
+in the middle of the model's domain (thetadot = psidot = 0, phidot = 1: a rocking rate of
+exactly 0 would put |omega_perp| on the singular point of its square root), and samples after
+its stop time are discarded by the reductions.  The events: the model's domain ends, ``[stop]
+theta_below`` when the spec has one (only then is it compiled: an event costs on every step),
+and the loss of contact (N = 0) where the model has a contact.
+
+The reductions of a chunk are computed for all its lanes at once (numpy over the lanes' samples;
+the diagnostics by one compiled call per chunk, bit for bit as one call per run), and only the
+quantities asked for: the senses of the orbit only when one of them is recorded.
 
 Every point's result depends on its own inputs only (lanes do not interact; their step sizes
 are their own), so a chunk gives the same rows in any process, on threads or on a Dask
@@ -65,20 +66,23 @@ from models import get_model
 from models.ring_dissipation import annulus_inertia
 from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
 
-from ..engine import heyoka_log
-
-from ..engine import validation
 from ..circling import circling, theta_maxima
-from ..engine.compile import to_heyoka
+from ..engine import batch, validation
+from ..engine.batch import Freeze as _Freeze  # noqa: F401  (patched by a negative control of the guard)
+from ..engine.compile import symbol_map, to_heyoka
 from ..engine.single import COLLAPSE_FACTOR
 from ..engine.lanes import simd_width
 from ..precision import parse_precision
 from .spec import SENSE_KEYS, InvalidPoint, SweepSpec
 
-EXTRA = ("alive", "reason", "t_stop", "theta_stop")
+#: Per-lane parameters after the model's: the last is [stop] theta_below, or without a [stop] the domain's upper end
+EXTRA = ("alive", "reason", "t_stop", "theta_stop or theta_max")
 WINDOWS = 20  # a run without nutation is read over 20 equal windows
 NUTATIONS_PER_WINDOW = 12  # otherwise over windows of 12 nutations (see orbit_windows)
 NUTATION_FLOOR = 1e-9  # rad: a theta spread below this is no nutation
+#: Batches reduced together: enough lanes for numpy to pay, few enough that a chunk's samples are
+#: held about once (the store's memory estimate assumes 1.5 times the dense output).
+REDUCE_GROUP = 16
 TH, PH, PS, THD, PHD, PSD, X, Y = range(8)
 
 
@@ -87,41 +91,26 @@ class System:
     """A model's batch system with freezing and its reductions, compiled once per process."""
 
     model: str
-    events: tuple  # event names, reason code = index + 1
+    events: tuple  # names of the compiled events, reason code = index + 1
     n_model_pars: int
     n_states: int  # 8, or 9 with W
-    safe_theta: float
+    lanes: batch.Lanes  # where alive, reason and t_stop are among a lane's parameters
+    n_pars: int  # per lane: the model's, reason, t_stop, alive (and theta_stop with [stop])
     template: object  # taylor_adaptive_batch
-    diagnostics: object  # cfunc: (omega_z, the energy's additive terms...) of the state
-
-
-class _Freeze:
-    """Terminal-event callback: freeze this lane, record why and when, let the batch run on."""
-
-    def __init__(self, n_model_pars: int, code: int, safe_theta: float):
-        self.n, self.code, self.safe = n_model_pars, float(code), safe_theta
-
-    def __call__(self, ta, d_sgn, lane):
-        n, pars, state = self.n, ta.pars, ta.state
-        if pars[n, lane] == 0.0:  # already frozen: two events in one step
-            return True
-        pars[n, lane] = 0.0
-        pars[n + 1, lane] = self.code
-        pars[n + 2, lane] = ta.time[lane]
-        state[TH, lane] = self.safe
-        state[THD, lane] = state[PSD, lane] = 0.0
-        state[PHD, lane] = 1.0  # not 0: |omega_perp| terms (sqrt) have no Taylor series at 0
-        return True
+    diagnostics: batch.ScalarTwin  # (omega_z, the energy's additive terms...) of the state
+    normal_force: object  # batch.ScalarTwin of N/(Mg), or None (no contact)
 
 
 @lru_cache(maxsize=None)
-def system(model_name: str, batch_size: int, cooldown: float) -> System:
+def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False) -> System:
+    """The batch system of a model; the ``theta_stop`` event only with ``stop`` (a spec's [stop])."""
     model = get_model(model_name)
     variables = list(hy.make_vars(*STATE_NAMES))
     mapping = dict(zip(STATE, variables))
     n = len(model.parameters)
     mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    alive, theta_stop = hy.par[n], hy.par[n + 3]
+    lanes = batch.Lanes(alive=n, reason=n + 1, t_stop=n + 2)
+    alive, last = hy.par[n], hy.par[n + 3]
     rhs = [to_heyoka(r, mapping) * alive for _, r in model.rhs()]
     sys_ = list(zip(variables, rhs))
     if model.dissipation is not None:
@@ -131,26 +120,32 @@ def system(model_name: str, batch_size: int, cooldown: float) -> System:
     th = variables[0]
     dom = model.domain
     lo, hi = float(dom.theta_min), float(dom.theta_max)
-    exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - hi, hy.event_direction.positive),
-             ("theta_stop", th - theta_stop, hy.event_direction.negative)]
+    if stop:
+        exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - hi, hy.event_direction.positive),
+                 ("theta_stop", th - last, hy.event_direction.negative)]
+    else:  # no theta_stop event; the upper end is read from par[n + 3]: heyoka sizes the parameters by
+        # the highest one read, and the records reason and t_stop below it must exist
+        exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - last, hy.event_direction.positive)]
+    normal = None
     if model.normal_force is not None:
         exprs.append(("contact_lost", to_heyoka(model.normal_force, mapping), hy.event_direction.negative))
+        normal = batch.ScalarTwin(validation.normal_force_function(model_name), hy.cfunc(
+            [to_heyoka(model.normal_force, symbol_map(model, variables[:8]))], variables[:8], batch_size=1))
     safe = 0.5 * (lo + hi)
-    events = [hy.t_event_batch(ex, direction=d, callback=_Freeze(n, i + 1, safe), cooldown=cooldown)
-              for i, (_, ex, d) in enumerate(exprs)]
-    state = np.zeros((len(variables), batch_size))
+    # a frozen lane is parked mid-domain with phidot = 1, not 0: |omega_perp| terms (sqrt) have no
+    # Taylor series at 0
+    park = ((TH, safe), (THD, 0.0), (PSD, 0.0), (PHD, 1.0))
+    state = np.zeros(len(variables))
     state[TH] = safe
-    pars = np.zeros((n + len(EXTRA), batch_size))
-    pars[:n] = np.array([float(sp.N(p.default)) for p in model.parameters])[:, None]
-    pars[n] = 1.0
-    template = hy.taylor_adaptive_batch(sys_, state, pars=pars, t_events=events)
-    energy = model.energy
+    n_pars = n + len(EXTRA)
+    template = batch.batch_system(sys_, exprs, lanes, n_pars, batch_size, cooldown, state,
+                                  [float(sp.N(p.default)) for p in model.parameters], park=park)
     omega_z = phidot + psidot * sp.cos(theta)
     fmap = dict(zip(STATE, variables[:8]))
     fmap.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    terms = sp.Add.make_args(sp.expand(energy))  # the drift is judged against the sum of their magnitudes
-    diag = hy.cfunc([to_heyoka(omega_z, fmap)] + [to_heyoka(t, fmap) for t in terms], variables[:8])
-    return System(model_name, tuple(e[0] for e in exprs), n, len(variables), safe, template, diag)
+    terms = sp.Add.make_args(sp.expand(model.energy))  # the drift is judged against the sum of their magnitudes
+    diag = batch.ScalarTwin.of([to_heyoka(omega_z, fmap)] + [to_heyoka(t, fmap) for t in terms], variables[:8])
+    return System(model_name, tuple(e[0] for e in exprs), n, len(variables), lanes, n_pars, template, diag, normal)
 
 
 # --- inputs of a chunk ---------------------------------------------------------------------------
@@ -325,15 +320,15 @@ def validate_points(spec: SweepSpec, block: int = VALIDATION_BLOCK) -> None:
 
 def fastest_rate(spec: SweepSpec) -> float:
     """The largest initial rate over the whole sweep (or sqrt(g)): the step cap is 1 / it, as in solve()."""
-    rates = [abs(spec.start.get(n, 0.0)) for n in ("thetadot", "phidot", "psidot")]
+    rates = [spec.start.get(n, 0.0) for n in ("thetadot", "phidot", "psidot")]
     for a in spec.axes:
         if a.name in ("thetadot", "phidot", "psidot"):  # a monotone axis: its ends are its extremes
-            rates += [abs(v) for v in a.values.extremes]
+            rates += list(a.values.extremes)
     g = spec.params.get("g", 980.0)
     for a in spec.axes:
         if a.name == "g":
             g = a.values.extremes[1]
-    return max(rates + [math.sqrt(g)])
+    return batch.fastest_rate(rates, g)
 
 
 def step_budget(spec: SweepSpec) -> int:
@@ -349,87 +344,62 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     if not indices:
         raise ValueError(f"chunk {chunk} is outside the sweep's {spec.n_chunks} chunks")
     bs = batch_size or simd_width()
-    cooldown = 2.0 * spec.t_end + 1.0
-    sysm = system(spec.model, bs, cooldown)
+    sysm = system(spec.model, bs, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None)
     idx = np.asarray(indices, dtype=np.int64)
     inputs = _inputs(spec, idx)
     problems = _problems(spec, idx, *inputs)  # validated before the store was made; a worker checks again
     if problems:
         raise _invalid(spec, *problems[0])
     states, model_pars, refs, _ = inputs
-    n = len(indices)
-    padded = -(-n // bs) * bs
-    pad = np.minimum(np.arange(padded), n - 1)
-    lane_states = np.zeros((sysm.n_states, padded))
+    n, m = len(indices), sysm.n_model_pars
+    pad = batch.pad_lanes(n, bs)
+    lane_states = np.zeros((sysm.n_states, len(pad)))
     lane_states[:8] = states[:, pad]
-    lane_pars = np.zeros((sysm.n_model_pars + len(EXTRA), padded))
-    lane_pars[: sysm.n_model_pars] = model_pars[:, pad]
-    lane_pars[sysm.n_model_pars] = 1.0
-    lane_pars[sysm.n_model_pars + 2] = np.nan
-    lane_pars[sysm.n_model_pars + 3] = spec.theta_stop if spec.theta_stop is not None else -1.0
+    lane_pars = np.zeros((sysm.n_pars, len(pad)))
+    lane_pars[:m] = model_pars[:, pad]
+    lane_pars[sysm.lanes.alive] = 1.0
+    lane_pars[sysm.lanes.t_stop] = np.nan
+    stop = spec.theta_stop
+    lane_pars[m + 3] = stop if stop is not None else float(get_model(spec.model).domain.theta_max)
     grid = np.linspace(0.0, spec.t_end, spec.samples)
-    options = {"max_delta_t": 1.0 / fastest_rate(spec), "max_steps": step_budget(spec)}
+    options = {"max_delta_t": batch.step_cap([fastest_rate(spec)]), "max_steps": step_budget(spec)}
 
-    def gen(ta, i):
-        cols = slice(i * bs, (i + 1) * bs)
-        ta.set_time(0.0)
-        ta.state[:] = lane_states[:, cols]
-        ta.pars[:] = lane_pars[:, cols]
-        return ta
-
-    with heyoka_log.collect() as messages:
-        results = hy.ensemble_propagate_grid_batch(sysm.template, grid, padded // bs, gen,
-                                                   max_workers=max(1, threads), **options)
+    (batches, messages), = batch.propagate_grid(sysm.template, lane_states, lane_pars, grid, threads, **options)
     rows = []
-    for b, res in enumerate(results):
-        local, out = res[0], res[-1]
-        lanes = [(k, b * bs + k) for k in range(bs) if b * bs + k < n]
-        if messages or not _batch_ok(local, out, grid):
-            for lane, k in lanes:  # again, each lane alone (module docstring)
-                one_local, one_out, warned = _alone(sysm, grid, lane_states[:, k], lane_pars[:, k], options)
-                rows.append(_row(spec, sysm, indices[k], grid, one_local, one_out, 0, model_pars[:, k], refs[k],
-                                 warned))
-            continue
-        for lane, k in lanes:
-            rows.append(_row(spec, sysm, indices[k], grid, local, out, lane, model_pars[:, k], refs[k], []))
+    for first in range(0, len(batches), REDUCE_GROUP):  # a group at a time: memory stays near the output's
+        group = batches[first:first + REDUCE_GROUP]
+        lanes = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
+        samples = np.empty((len(grid), sysm.n_states, len(lanes)))
+        final_pars = np.empty((lane_pars.shape[0], len(lanes)))
+        failed = {}  # lane -> (outcome, time)
+        for b in group:
+            cols = np.arange(b.columns.start, min(b.columns.stop, n))
+            at = cols - lanes[0]
+            if not messages and _batch_ok(b, len(grid)):
+                samples[:, :, at] = b.output[:, :, : len(cols)]
+                final_pars[:, at] = b.local.pars[:, : len(cols)]
+                continue
+            for k, j in zip(cols, at):  # again, each lane alone (module docstring)
+                one, warned = batch.alone(sysm.template, grid, lane_states[:, k], lane_pars[:, k], **options)
+                failure = batch.lane_failure(one, 0, sysm.lanes, warned)
+                if failure is not None:
+                    failed[j] = failure
+                    continue
+                samples[:, :, j] = one.output[:, :, 0] if one.output.shape[0] == len(grid) else np.nan
+                final_pars[:, j] = one.local.pars[:, 0]
+        for i in range(first, first + len(group)):
+            batches[i] = None  # its output is copied: let it go
+        good = np.array([j not in failed for j in range(len(lanes))])
+        reduced = iter(_reduce(spec, sysm, idx[lanes[good]], grid, samples[:, :, good], final_pars[:, good],
+                               model_pars[:, lanes[good]], refs[lanes[good]]))
+        rows += [_failed_row(spec, indices[lanes[j]], *failed[j]) if j in failed else next(reduced)
+                 for j in range(len(lanes))]
     return rows
 
 
-def _batch_ok(local, out, grid) -> bool:
-    outcomes = [r[0] for r in local.propagate_res]
-    return all(o == hy.taylor_outcome.time_limit for o in outcomes) and out.shape[0] == len(grid)
-
-
-def _alone(sysm: System, grid, state_col, pars_col, options) -> tuple:
-    """One lane integrated alone, in a batch of copies of itself: (integrator, output, heyoka's messages)."""
-    bs = sysm.template.batch_size
-
-    def gen(ta, i):
-        ta.set_time(0.0)
-        ta.state[:] = np.repeat(state_col[:, None], bs, axis=1)
-        ta.pars[:] = np.repeat(pars_col[:, None], bs, axis=1)
-        return ta
-
-    with heyoka_log.collect() as messages:
-        res = hy.ensemble_propagate_grid_batch(sysm.template, grid, 1, gen, max_workers=1, **options)[0]
-    return res[0], res[-1], list(messages)
-
-
-def _row(spec, sysm, index, grid, local, out, lane, model_pars, ref, warned) -> dict:
-    """The row of one lane: its failure if it failed, else the reductions of its samples."""
-    outcome = local.propagate_res[lane][0]
-    lane_pars = local.pars[:, lane]
-    n = sysm.n_model_pars
-    t_fail = float(local.time[lane])
-    if outcome == hy.taylor_outcome.err_nf_state:
-        return _failed_row(spec, index, "failed:non_finite", t_fail)
-    if outcome != hy.taylor_outcome.time_limit:
-        return _failed_row(spec, index, "failed:step_size_collapse", t_fail)
-    if any(m.event_detection or m.level in ("error", "critical") for m in warned):
-        reason = int(lane_pars[n + 1])
-        return _failed_row(spec, index, "failed:event_detection", float(lane_pars[n + 2]) if reason else t_fail)
-    samples = out[:, :, lane] if out.shape[0] == len(grid) else np.full((len(grid), sysm.n_states), np.nan)
-    return _reduce(spec, sysm, index, grid, samples, lane_pars, model_pars, ref)
+def _batch_ok(b: batch.Batch, n_grid: int) -> bool:
+    """A batch whose rows are taken as they are: every lane ran to the end of the grid."""
+    return b.complete(n_grid)
 
 
 def _failed_row(spec: SweepSpec, index: int, outcome: str, t_stop: float) -> dict:
@@ -440,67 +410,98 @@ def _failed_row(spec: SweepSpec, index: int, outcome: str, t_stop: float) -> dic
     return row
 
 
-def _guard(spec: SweepSpec, sysm: System, t, y, model_pars, t_stop):
-    """(outcome, time) of the first sample that should not exist, or None (module docstring).
+def _segments(samples, lengths) -> np.ndarray:
+    """The first ``lengths[l]`` samples of every lane l, lane after lane: (sum(lengths), n_states)."""
+    lanes = np.moveaxis(samples, 2, 0)  # (lanes, grid, states)
+    return lanes[np.arange(samples.shape[0])[None, :] < np.asarray(lengths)[:, None]]
+
+
+def _guard(spec: SweepSpec, sysm: System, grid, samples, model_pars, stopped, t_stop) -> list:
+    """Per lane, (outcome, time) of the first sample that should not exist, or None (module docstring).
 
     Every sample before the lane's stop must be finite, inside the domain, above ``[stop]
     theta_below`` and at N > 0; at a sample on the stop time itself the stopping event's own
     function is ~0, so the samples checked are those strictly before it.
     """
-    check = t < t_stop if t_stop is not None else np.ones(len(t), bool)
-    check[0] = True
-    ys = y[check][:, :8]
-    ts = t[check]
-    finite = np.isfinite(ys).all(axis=1)
-    if not finite.all():
-        return "failed:non_finite", float(ts[np.argmin(finite)])
+    n_lanes = samples.shape[2]
+    checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), len(grid))
+    inside = np.arange(len(grid))[:, None] < checked[None, :]  # (grid, lanes)
+    finite = np.isfinite(samples[:, :8, :]).all(axis=1) | ~inside
+    out = [None] * n_lanes
+    for k in np.flatnonzero(~finite.all(axis=0)):
+        out[k] = ("failed:non_finite", float(grid[np.argmin(finite[:, k])]))
     model = get_model(spec.model)
     lo, hi = float(model.domain.theta_min), float(model.domain.theta_max)
-    th = ys[:, TH]
-    ok = (lo < th) & (th < hi)
-    if spec.theta_stop is not None:
-        ok &= th > spec.theta_stop
-    normal = validation.normal_force_columns(spec.model, ys.T, np.repeat(np.asarray(model_pars, float)[:, None],
-                                                                          len(ts), axis=1))
-    if normal is not None:
-        ok &= normal > 0
-    if not ok.all():
-        return "failed:event_detection", float(ts[np.argmin(ok)])
-    return None
+    th = samples[:, TH, :]
+    with np.errstate(invalid="ignore"):
+        ok = (lo < th) & (th < hi)
+        if spec.theta_stop is not None:
+            ok &= th > spec.theta_stop
+    finite_lanes = finite.all(axis=0)
+    if sysm.normal_force is not None and finite_lanes.any():
+        lanes = np.flatnonzero(finite_lanes)
+        lengths = checked[lanes]
+        points = _segments(samples[:, :8, lanes], lengths)
+        normal = batch.per_run(sysm.normal_force, points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
+                               lengths)[0]
+        positive = np.ones((len(lanes), len(grid)), bool)
+        positive[np.arange(len(grid))[None, :] < lengths[:, None]] = normal > 0
+        ok[:, lanes] &= positive.T
+    ok |= ~inside
+    for k in np.flatnonzero(finite_lanes & ~ok.all(axis=0)):
+        out[k] = ("failed:event_detection", float(grid[np.argmin(ok[:, k])]))
+    return out
 
 
-def _reduce(spec: SweepSpec, sysm: System, index: int, grid, samples, lane_pars, model_pars, ref) -> dict:
-    """One point's row from its dense output (samples: (n_grid, n_states))."""
-    n = sysm.n_model_pars
-    reason = int(lane_pars[n + 1])
-    t_stop = float(lane_pars[n + 2]) if reason else spec.t_end
-    keep = grid <= t_stop if reason else np.ones(len(grid), bool)
-    keep[0] = True
-    y = samples[keep]
-    t = grid[keep]
-    failed = _guard(spec, sysm, t, y, model_pars, t_stop if reason else None)
-    if failed is not None:
-        return _failed_row(spec, index, *failed)
-    diag = sysm.diagnostics(np.ascontiguousarray(y[:, :8].T), pars=np.ascontiguousarray(
-        np.repeat(model_pars[:sysm.diagnostics.nparams, None], len(t), axis=1)))
+def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, model_pars, refs) -> list:
+    """The rows of lanes that ran to their end, from their samples (grid, states, lanes) at once."""
+    reason = final_pars[sysm.lanes.reason].astype(int)
+    stopped = reason != 0
+    t_stop = final_pars[sysm.lanes.t_stop]
+    kept = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="right")), len(grid))
+    guarded = _guard(spec, sysm, grid, samples, model_pars, stopped, t_stop)
+    rows = [None] * len(indices)
+    for k, failure in enumerate(guarded):
+        if failure is not None:
+            rows[k] = _failed_row(spec, int(indices[k]), *failure)
+    lanes = np.array([k for k in range(len(indices)) if rows[k] is None], dtype=np.int64)
+    if not len(lanes):
+        return rows
+    lengths = kept[lanes]
+    starts = np.cumsum(lengths) - lengths
+    ends = starts + lengths - 1
+    y = _segments(samples[:, :, lanes], lengths)
+    diag = batch.per_run(sysm.diagnostics, np.ascontiguousarray(y[:, :8].T),
+                         np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
     omega_z, terms = diag[0], diag[1:]
     energy, scale = terms.sum(axis=0), np.abs(terms).sum(axis=0)
     work = y[:, 8] if sysm.n_states > 8 else 0.0
-    drift = float(np.max(np.abs(energy + work - energy[0])) / np.max(scale))
-    row = {"idx": index, **{f"in_{k}": v for k, v in spec.point(index).items()},
-           "outcome": "ok" if not reason else sysm.events[reason - 1], "t_stop": t_stop, "energy_drift_vs_terms": drift}
+    drift = (np.maximum.reduceat(np.abs(energy + work - np.repeat(energy[starts], lengths)), starts)
+             / np.maximum.reduceat(scale, starts))
     th = y[:, TH]
-    q = {"max_theta": th.max(), "min_theta": th.min(), "final_theta": th[-1],
-         "max_theta_deviation": np.max(np.abs(th - ref))}
-    if "tilt" in spec.point(index):
-        q["growth"] = q["max_theta_deviation"] / spec.point(index)["tilt"]
+    q = {"max_theta": np.maximum.reduceat(th, starts), "min_theta": np.minimum.reduceat(th, starts),
+         "final_theta": th[ends],
+         "max_theta_deviation": np.maximum.reduceat(np.abs(th - np.repeat(refs[lanes], lengths)), starts)}
     for i, name in enumerate(STATE_NAMES):
-        q[f"final_{name}"] = y[-1, i]
-    if set(spec.record) & set(SENSE_KEYS):  # only where asked: the windows cost a filter each
-        q.update(senses(t, y, omega_z))
-    for name in spec.record:
-        row[name] = float(q[name])
-    return row
+        q[f"final_{name}"] = y[ends, i]
+    wanted = set(spec.record) & set(SENSE_KEYS)  # only where asked: the windows cost a filter each
+    for j, k in enumerate(lanes):
+        index = int(indices[k])
+        point = spec.point(index)
+        stop = float(t_stop[k]) if stopped[k] else spec.t_end
+        row = {"idx": index, **{f"in_{a}": v for a, v in point.items()},
+               "outcome": "ok" if not stopped[k] else sysm.events[reason[k] - 1], "t_stop": stop,
+               "energy_drift_vs_terms": float(drift[j])}
+        values = {name: column[j] for name, column in q.items()}
+        if "tilt" in point:
+            values["growth"] = values["max_theta_deviation"] / point["tilt"]
+        if wanted:
+            seg = slice(starts[j], ends[j] + 1)
+            values.update(senses(grid[: lengths[j]], y[seg], omega_z[seg]))
+        for name in spec.record:
+            row[name] = float(values[name])
+        rows[k] = row
+    return rows
 
 
 def orbit_windows(t, theta) -> list:

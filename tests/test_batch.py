@@ -1,0 +1,109 @@
+"""The batch propagator (verify.engine.batch): lanes, threads and chunks change no bit; compiled
+functions evaluated over many runs give the bits of one call per run; frozen lanes record why and when."""
+from __future__ import annotations
+
+import heyoka as hy
+import numpy as np
+import pytest
+
+from verify.engine import batch
+
+X, V = hy.make_vars("x", "v")
+
+
+def _oscillator(batch_size: int):
+    """x'' = -w^2 x (w = par[0]) with the freezing factor par[1]; event: x falls through par[4]."""
+    alive = hy.par[1]
+    system = [(X, V * alive), (V, -hy.par[0] ** 2 * hy.sin(X) * alive)]
+    events = [("below", X - hy.par[4], hy.event_direction.negative)]
+    return batch.batch_system(system, events, batch.Lanes(alive=1, reason=2, t_stop=3), 5, batch_size, 100.0,
+                              [0.5, 0.0], [1.0], park=((1, 0.0),))
+
+
+def _lanes(n: int, batch_size: int):
+    rng = np.random.default_rng(7)
+    pad = batch.pad_lanes(n, batch_size)
+    states = np.stack([rng.uniform(0.1, 1.5, n), rng.uniform(-1, 1, n)])[:, pad]
+    pars = np.zeros((5, len(pad)))
+    pars[0] = rng.uniform(1, 3, n)[pad]
+    pars[1] = 1.0
+    pars[3] = np.nan
+    pars[4] = rng.uniform(-1.2, 0.0, n)[pad]
+    return np.ascontiguousarray(states), pars
+
+
+def _run(ta, states, pars, grid, threads, chunk):
+    outputs, finals = [], []
+    for batches, messages in batch.propagate_grid(ta, states, pars, grid, threads, chunk):
+        assert not messages
+        for b in batches:
+            assert b.complete(len(grid))
+            outputs.append(b.output)
+            finals.append(b.local.pars)
+    return np.concatenate(outputs, axis=2), np.concatenate(finals, axis=1)
+
+
+def test_threads_and_chunks_change_no_bit():
+    ta = _oscillator(4)
+    states, pars = _lanes(37, 4)
+    grid = np.linspace(0.0, 6.0, 121)
+    out1, fin1 = _run(ta, states, pars, grid, 1, None)
+    out2, fin2 = _run(ta, states, pars, grid, 2, 3)
+    assert out1.tobytes() == out2.tobytes() and fin1.tobytes() == fin2.tobytes()
+    assert (fin1[2] > 0).any() and (fin1[2] == 0).any()  # some lanes froze, some did not: both paths ran
+
+
+def test_frozen_lane_records_its_event_and_stops_moving():
+    ta = _oscillator(4)
+    states, pars = _lanes(8, 4)
+    grid = np.linspace(0.0, 6.0, 121)
+    out, fin = _run(ta, states, pars, grid, 1, None)
+    for k in np.flatnonzero(fin[2] == 1.0):
+        t_stop = fin[3, k]
+        after = grid > t_stop
+        assert fin[1, k] == 0.0 and 0 < t_stop < grid[-1]
+        frozen_x = out[after, 0, k]
+        assert np.all(frozen_x == frozen_x[0]) and np.all(out[after, 1, k] == 0.0)  # parked: v = 0, x held
+        assert abs(frozen_x[0] - pars[4, k]) < 1e-12  # where the event found x = its threshold
+        before = grid < t_stop
+        assert np.all(out[before, 0, k] > pars[4, k])  # above its threshold until the event
+
+
+def test_a_lane_alone_gets_the_bits_it_had_in_a_mixed_batch():
+    ta = _oscillator(4)
+    states, pars = _lanes(8, 4)
+    grid = np.linspace(0.0, 6.0, 61)
+    out, fin = _run(ta, states, pars, grid, 1, None)
+    for k in (1, 6):
+        one, messages = batch.alone(ta, grid, states[:, k], pars[:, k])
+        assert not messages
+        assert one.output[:, :, 0].tobytes() == out[:, :, k].tobytes()
+        assert batch.lane_failure(one, 0, batch.Lanes(1, 2, 3), []) is None
+
+
+def test_per_run_evaluation_has_the_bits_of_one_call_per_run():
+    fn = batch.ScalarTwin.of([hy.cos(X) * V + hy.sin(X) ** 2, hy.sqrt(X * X + V * V) * hy.par[0]], [X, V])
+    rng = np.random.default_rng(3)
+    lengths = np.array([1, 2, 3, 4, 5, 7, 9, 13, 401, 402, 403])
+    points = rng.uniform(0.1, 3.0, (2, lengths.sum()))
+    pars = np.repeat(rng.uniform(1, 2, len(lengths))[None, :], lengths, axis=1)
+    got = batch.per_run(fn, points, pars, lengths)
+    cuts = np.cumsum(lengths)[:-1]
+    one_by_one = np.concatenate([fn.simd(np.ascontiguousarray(p), pars=np.ascontiguousarray(q))
+                                 for p, q in zip(np.split(points, cuts, axis=1), np.split(pars, cuts, axis=1))], axis=1)
+    assert got.tobytes() == one_by_one.tobytes()
+    # negative control: one call over all the runs evaluates some leftover points vectorised, and the
+    # vectorised and scalar transcendental functions differ in the last bit at some of them
+    if fn.simd.batch_size > 1:
+        assert fn.simd(points, pars=pars).tobytes() != one_by_one.tobytes()
+
+
+def test_step_cap_is_one_radian_of_the_fastest_rate():
+    assert batch.fastest_rate([3.0, -40.0, 0.0], 980.0) == 40.0
+    assert batch.fastest_rate([3.0], 980.0) == pytest.approx(980.0 ** 0.5, rel=0)
+    assert batch.step_cap([-40.0], 980.0) == 1.0 / 40.0
+
+
+def test_pad_lanes_repeats_the_last_point():
+    assert batch.pad_lanes(5, 4).tolist() == [0, 1, 2, 3, 4, 4, 4, 4]
+    assert batch.pad_lanes(8, 4).tolist() == list(range(8))
