@@ -13,6 +13,7 @@ import math
 import mpmath
 
 from models import ring as ring_body
+from models.common import PAPER_G
 from verify.precision import parse_precision
 
 from .spindown import FAMILIES, family_quantities, family_state, precision_runs, spindown
@@ -156,7 +157,7 @@ def threshold_rows(progress=None) -> list:
             row["scan"] = stability_scan(model, motion, params)
         if motion != "sleeping":
             with mpmath.workdps(40):
-                base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(980) / mpmath.mpf("0.4")) * 2
+                base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(PAPER_G) / mpmath.mpf("0.4")) * 2
             for factor in ("0.9", "1.1"):
                 with mpmath.workdps(40):
                     rate = base * mpmath.mpf(factor)
@@ -213,7 +214,7 @@ def caption_rows() -> list:
 
     from .thresholds import linear_deviation, steady_state
 
-    g = mpmath.mpf(980)
+    g = mpmath.mpf(PAPER_G)
     root_g = mpmath.sqrt(g)
     rows = []
     rolling = threshold("disk", "diameter-spin").value
