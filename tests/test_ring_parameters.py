@@ -46,7 +46,7 @@ def test_annular_set_rounds_to_the_printed_set(name):
 def test_printed_set_reproduces_the_papers_printed_numbers():
     """cot^-1 h = 1.161 (Fig. 10), theta0 between 1.16 and 1.32 (after Eq. 62, the fast end with the
     paper's + h^2), theta0 = 1.205 at phidot0 = 25.7 (Fig. 11 RHS), each to its printed digits."""
-    from verify.studies.thresholds import ring_theta0_limits, steady_state
+    from models.steady import ring_theta0_limits, steady_state
 
     lim = ring_theta0_limits(ring.PRINTED)
     assert mpmath.nstr(lim["slow"], 4) == "1.161"

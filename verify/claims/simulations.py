@@ -475,7 +475,8 @@ def _check_fig10_rhs():
 
 @lru_cache(maxsize=None)
 def _fig11_runs():
-    from verify.studies.thresholds import steady_state, threshold
+    from models.steady import steady_state
+    from verify.studies.thresholds import threshold
 
     root = float(steady_state("ring", "diameter-spin", "25.7", RING_PRINTED)["theta"])
     out = {"root": root, "threshold": float(threshold("ring", "diameter-spin", RING_PRINTED).value)}
@@ -499,7 +500,7 @@ def _check_fig11_lhs():
 
 
 def _fig11_lhs_root():
-    from verify.studies.thresholds import steady_state
+    from models.steady import steady_state
 
     return float(steady_state("ring", "diameter-spin", repr(SQRT_G), RING_PRINTED)["theta"])
 

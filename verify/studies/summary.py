@@ -14,11 +14,11 @@ import mpmath
 
 from models import ring as ring_body
 from models.common import PAPER_G
+from models.steady import ring_theta0_limits, steady_state
 from verify.precision import parse_precision
 
 from .spindown import FAMILIES, family_quantities, family_state, precision_runs, spindown
-from .thresholds import (GROWTH, bracket, linear_path, nonlinear_path, ring_theta0_limits, steady_state, threshold,
-                         variational_w2)
+from .thresholds import GROWTH, bracket, linear_path, nonlinear_path, threshold, variational_w2
 
 #: The parameter set of "the paper's ring" in every row below, and the one it is compared with.
 RING_SET, RING_OTHER_SET = "printed", "annular"
@@ -212,7 +212,7 @@ def caption_rows() -> list:
     """The captions of Figs. 5, 10, 11, 18, 19 against the exact thresholds (and Olsson's)."""
     from verify.engine.single import solve
 
-    from .thresholds import linear_deviation, steady_state
+    from .thresholds import linear_deviation
 
     g = mpmath.mpf(PAPER_G)
     root_g = mpmath.sqrt(g)

@@ -293,7 +293,7 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     start_table = dict(_table(data, "start", where))
     steady = start_table.pop("steady", None)
     if steady is not None:
-        from ..studies.thresholds import MOTIONS
+        from models.steady import MOTIONS
 
         allowed = MOTIONS.get(model_name, ())
         if steady not in allowed:
