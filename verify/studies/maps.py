@@ -361,7 +361,7 @@ def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: di
     from verify.engine.single import resolve_parameters
     from verify.precision import parse_precision
 
-    from verify import validation
+    from verify.engine import validation
 
     mdl = get_model(model)
     pars = [float(v) for v in resolve_parameters(mdl, params, parse_precision("double")).values()]
