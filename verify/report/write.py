@@ -15,9 +15,9 @@ import time
 from collections import Counter
 from pathlib import Path
 
-from .claims import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS, all_claims, missing
-from .claims.base import Claim, Evaluation, quote_fragments
-from .provenance import provenance, write_atomic
+from ..claims import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS, all_claims, missing
+from ..claims.base import Claim, Evaluation, quote_fragments
+from ..provenance import provenance, write_atomic
 
 
 def evaluate_all(progress=None) -> list:
@@ -159,7 +159,7 @@ def render_html(markdown_text: str, images: dict) -> str:
 
 
 def _conservation_job():
-    from .conservation import conservation_rows
+    from ..studies.conservation import conservation_rows
 
     t0 = time.monotonic()
     rows = conservation_rows(progress=lambda s: print(f"  conservation: {s}", file=sys.stderr, flush=True))
@@ -174,8 +174,8 @@ def _maps(say):
     """Stability maps of 100 rates x 100 tilts (10 s each) by heyoka batch + ensemble: rows, PNGs, timing."""
     import numpy as np
 
-    from .studies.maps import render_map, stability_map, switch_bracket
-    from .studies.thresholds import threshold
+    from ..studies.maps import render_map, stability_map, switch_bracket
+    from ..studies.thresholds import threshold
 
     rows, images, timing = [], {}, []
     from models.ring import parameter_set
@@ -199,14 +199,14 @@ def _maps(say):
 
 
 def _reference_check_job(precision: str):
-    from .reference import check_set
+    from ..reference import check_set
 
     t0 = time.monotonic()
     return [c.to_record() for c in check_set(precision)], round(time.monotonic() - t0, 1)
 
 
 def write_report(out="reports", bench: bool = True) -> None:
-    from .conservation import PRECISIONS, render_markdown as conservation_markdown
+    from ..studies.conservation import PRECISIONS, render_markdown as conservation_markdown
 
     import os
 
@@ -227,7 +227,7 @@ def write_report(out="reports", bench: bool = True) -> None:
         results = evaluate_all(progress=lambda s: say("  " + s))
         timing["claims_seconds"] = round(time.monotonic() - t0, 1)
         t1 = time.monotonic()
-        from .studies.summary import caption_rows, precision_rows, render as render_studies, spindown_rows, threshold_rows
+        from ..studies.summary import caption_rows, precision_rows, render as render_studies, spindown_rows, threshold_rows
 
         studies = {"thresholds": threshold_rows(progress=lambda s: say("  " + s)), "captions": caption_rows(),
                    "spindown": spindown_rows(), "precision": precision_rows()}
@@ -235,7 +235,7 @@ def write_report(out="reports", bench: bool = True) -> None:
         studies["maps"], map_images, timing["stability_maps"] = _maps(say)
         study_images.update(map_images)
         say("  dissipative spin-down (Moffatt, contact-rate)")
-        from .studies.dissipation import dissipation_study, render_dissipation, to_record as dissipation_record
+        from ..studies.dissipation import dissipation_study, render_dissipation, to_record as dissipation_record
 
         t2 = time.monotonic()
         laws = dissipation_study()
@@ -243,7 +243,7 @@ def write_report(out="reports", bench: bool = True) -> None:
         study_images["dissipation.png"] = render_dissipation(laws)
         timing["dissipation_seconds"] = round(time.monotonic() - t2, 1)
         say("  retrograde turn of the ring (sweeps)")
-        from .studies.retrograde import run_study
+        from ..studies.retrograde import run_study
 
         t3 = time.monotonic()
         retro = run_study(progress=lambda s: say("  " + s))
@@ -255,8 +255,8 @@ def write_report(out="reports", bench: bool = True) -> None:
         studies["retrograde"] = retro
         timing["retrograde_seconds"] = round(time.monotonic() - t3, 1)
         say("  reference set: --check in double and long (quad runs in the second process)")
-        from .reference import check_set
-        from .reference.store import read_index
+        from ..reference import check_set
+        from ..reference.store import read_index
 
         t4 = time.monotonic()
         reference_checks = {p: [c.to_record() for c in check_set(p)] for p in ("double", "long")}
@@ -265,14 +265,14 @@ def write_report(out="reports", bench: bool = True) -> None:
         rows, timing["conservation_seconds"] = future.result()
         reference_checks["quad"], timing["reference_check_seconds"]["quad"] = quad_future.result()
         studies["reference"] = {"index": read_index(), "checks": reference_checks}
-    from .studies.spindown import PRECISIONS as SPINDOWN_PRECISIONS, REFERENCE as SPINDOWN_REFERENCE
+    from ..studies.spindown import PRECISIONS as SPINDOWN_PRECISIONS, REFERENCE as SPINDOWN_REFERENCE
 
     # every precision a number in the report comes from: the conservation table, the
     # variational check (double, quad) and the spin-down precision study
     prov = provenance(PRECISIONS + SPINDOWN_PRECISIONS + (SPINDOWN_REFERENCE, "long", "mp:128", "mp:256"))
     cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
-    from .reference.check import render_markdown as render_reference
-    from .studies.retrograde import render_markdown as render_retrograde
+    from ..reference.check import render_markdown as render_reference
+    from ..studies.retrograde import render_markdown as render_retrograde
 
     extra = render_reference(studies["reference"]["index"], studies["reference"]["checks"])
     extra += render_retrograde(studies["retrograde"])
@@ -312,7 +312,7 @@ def write_report(out="reports", bench: bool = True) -> None:
     write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
     say(f"wrote {out}/REPORT.md, report.html, results.json, conservation.md ({timing['total_seconds']} s)")
     if bench:
-        from .bench import run_benchmarks, write_benchmarks
+        from ..bench import run_benchmarks, write_benchmarks
 
         say("benchmarks (alone, after everything else):")
         t5 = time.monotonic()

@@ -16,10 +16,10 @@ import time
 
 from models import MODEL_NAMES, sources
 
-from .engine.single import solve
-from .engine.invariants import NEGLIGIBLE_INITIAL
-from .provenance import provenance, write_atomic
-from .standard import STANDARD_STATES
+from ..engine.single import solve
+from ..engine.invariants import NEGLIGIBLE_INITIAL
+from ..provenance import provenance, write_atomic
+from ..standard import STANDARD_STATES
 
 PRECISIONS = ("double", "quad")
 T_END = "10"
