@@ -18,6 +18,7 @@ import pytest
 from verify.sweep import engine, parse
 from verify.sweep.engine import senses
 from verify.sweep.spec import SENSE_KEYS
+from verify.report import retrograde as retrograde_section
 from verify.studies import retrograde
 
 if sys.version_info >= (3, 11):
@@ -198,7 +199,7 @@ def test_study_summary_counts_and_renders(tmp_path):
         assert {b["retrograde_turn"] for b in s["bodies"]} <= {"turns", "does not turn", "undecided"}
         assert s["min_points_per_nutation"] >= 20
         assert s["figure"][:8] == b"\x89PNG\r\n\x1a\n"
-    text = "\n".join(retrograde.render_markdown(study))
+    text = "\n".join(retrograde_section.render_markdown(study))
     assert "## The ring's retrograde turn: air drag or rolling friction" in text and "issue" not in text.lower()
     assert "slow path" in text and "node-turn reading" in text.lower()
 
