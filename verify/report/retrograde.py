@@ -1,8 +1,21 @@
-"""REPORT.md's section on the ring's retrograde turn, rendered from :func:`verify.studies.retrograde.run_study`'s
-summaries (results.json's ``studies.retrograde``); the figures are named retrograde-<mechanism>[-roll].png."""
+"""REPORT.md's section on the ring's retrograde turn and its figures, rendered from what
+:func:`verify.studies.retrograde.run_study` found: the summaries (results.json's ``studies.retrograde``)
+and each mechanism's sweep (figures retrograde-<mechanism>.png and retrograde-<mechanism>-roll.png)."""
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+
+from ..sweep.plot import render
+
+
+def figures(mechanism: str, spec, rows: list) -> dict:
+    """The two maps of one mechanism's sweep, file name -> PNG: the retrograde turn (the spec's own
+    [plot]) and the rolling direction reversed."""
+    roll = replace(spec, plot={**spec.plot, "quantity": "roll_reversal"})
+    return {f"retrograde-{mechanism}.png": render(spec, rows),
+            f"retrograde-{mechanism}-roll.png": render(roll, rows,
+                                                       title=f"ring+{mechanism}: rolling direction reversed (1 = yes)")}
 
 
 def render_markdown(study: dict) -> list:

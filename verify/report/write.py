@@ -138,15 +138,15 @@ def write_report(out="reports", bench: bool = True) -> None:
         timing["dissipation_seconds"] = round(time.monotonic() - t2, 1)
         say("  retrograde turn of the ring (sweeps)")
         from ..studies.retrograde import run_study
+        from .retrograde import figures as retrograde_figures
 
         t3 = time.monotonic()
         retro = run_study(progress=lambda s: say("  " + s))
-        for m, st in retro.items():
-            study_images[f"retrograde-{m}.png"] = st.pop("figure")
-            study_images[f"retrograde-{m}-roll.png"] = st.pop("figure_roll")
+        for m, st in retro.summaries.items():
+            study_images.update(retrograde_figures(m, *retro.sweeps[m]))
             # wall time belongs in timing.json: results.json must be the same bytes on every run
             timing.setdefault("retrograde_sweep_seconds", {})[m] = st.pop("seconds")
-        studies["retrograde"] = retro
+        studies["retrograde"] = retro.summaries
         timing["retrograde_seconds"] = round(time.monotonic() - t3, 1)
         say("  reference set: --check in double and long (quad runs in the second process)")
         from ..reference import check_set

@@ -27,10 +27,10 @@ from __future__ import annotations
 import math
 import sys
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..sweep import SPECS, load, parse, run_sweep
-from ..sweep.plot import render
 from ..sweep.store import Store
 
 if sys.version_info >= (3, 11):
@@ -79,7 +79,15 @@ def dumps_toml(data: dict) -> str:
     return "\n".join(out)
 
 
-def run_study(directory=None, threads=None, progress=None) -> dict:
+@dataclass(frozen=True)
+class Study:
+    """What :func:`run_study` found: the summaries (JSON-ready) and the sweeps they summarise."""
+
+    summaries: dict  # mechanism -> summarise(mechanism, ...)
+    sweeps: dict  # mechanism -> (spec, rows) of the mechanism's sweep (not the control), for its figures
+
+
+def run_study(directory=None, threads=None, progress=None) -> Study:
     """Run both mechanisms and the controls (stores in ``directory``, a temporary folder by default)."""
     say = progress or (lambda s: None)
     owned = None
@@ -87,7 +95,7 @@ def run_study(directory=None, threads=None, progress=None) -> dict:
         owned = tempfile.TemporaryDirectory(prefix="retrograde-")
         directory = owned.name
     try:
-        out = {}
+        out, sweeps = {}, {}
         for m in MECHANISMS:
             spec = load(spec_path(m), store=str(Path(directory) / f"{m}.sqlite"))
             control = parse(control_text(m), f"{m} control", store=str(Path(directory) / f"{m}-control.sqlite"))
@@ -98,7 +106,8 @@ def run_study(directory=None, threads=None, progress=None) -> dict:
                 with Store(s) as store:
                     results[label] = (s, store.rows(), res.seconds)
             out[m] = summarise(m, results)
-        return out
+            sweeps[m] = results["sweep"][:2]
+        return Study(out, sweeps)
     finally:
         if owned is not None:
             owned.cleanup()
@@ -212,15 +221,7 @@ def summarise(mechanism: str, results: dict) -> dict:
         "reproduces_observation": reproduces,
         "verdict": _verdict(mechanism, reproduces, ring, disk, control, ring_read, disk_read),
         "seconds": round(seconds + cseconds, 1),
-        "figure": render(spec, rows), "figure_roll": render(_with_plot(spec, "roll_reversal"), rows,
-                                                           title=f"ring+{mechanism}: rolling direction reversed (1 = yes)"),
     }
-
-
-def _with_plot(spec, quantity: str):
-    from dataclasses import replace
-
-    return replace(spec, plot={**spec.plot, "quantity": quantity})
 
 
 def _verdict(mechanism, reproduces, ring: list, disk: list, control: dict, ring_read=(), disk_read=()) -> str:
