@@ -14,7 +14,7 @@ Example (``verify/sweep/specs/disk-diameter-spin.toml`` ships with the package):
     k = 0.25
 
     [start]                      # the start every run shares...
-    steady = "diameter-spin"     # ...here the steady motion at the rate axis (issue-4 thresholds)
+    steady = "diameter-spin"     # ...here the steady motion at the rate axis (models.steady)
 
     [[axis]]
     name = "phidot"              # a state variable, a parameter, "tilt" (added to theta), or
