@@ -165,7 +165,7 @@ def write_report(out="reports", bench: bool = True) -> None:
     # variational check (double, quad) and the spin-down precision study
     prov = provenance(PRECISIONS + SPINDOWN_PRECISIONS + (SPINDOWN_REFERENCE, "long", "mp:128", "mp:256"))
     cons_md = conservation_markdown(rows, prov).split("\n## Provenance")[0]
-    from ..reference.check import render_markdown as render_reference
+    from .reference import render_markdown as render_reference
     from .retrograde import render_markdown as render_retrograde
     from .sections import render as render_studies
 
