@@ -4,8 +4,12 @@ import sympy as sp
 from .base import Parameter
 from .symbols import g
 
+#: The paper's g: g/L = 980 s^-2 (g = 980 cm s^-2, L = 1 cm), the default of every model's ``g``.
+#: An int, so that ``sp.Integer``, ``mpmath.mpf`` and ``float`` of it are all exact.
+PAPER_G = 980
+
 GRAVITY = Parameter(
-    "g", g, sp.Integer(980),
+    "g", g, sp.Integer(PAPER_G),
     "g/L in s^-2, L = R (disk, ring) or a (hurricane balls); 980 is g with L = 1 cm",
     lower=0.0,
 )

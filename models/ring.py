@@ -70,8 +70,8 @@ def parameter_set(name: str) -> dict:
     dict
         A new dict ``{"I1": ..., "I3": ..., "h": ...}``: sympy rationals for ``"annular"``,
         decimal strings for ``"printed"``.  Either is accepted wherever parameters are
-        (``verify.solve(params=...)``, ``verify.studies.thresholds.threshold``, ...); g is
-        left at its default.
+        (``verify.solve(params=...)``, ``verify.studies.thresholds.threshold``,
+        ``models.steady.steady_state``, ...); g is left at its default.
 
     Raises
     ------

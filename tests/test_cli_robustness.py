@@ -18,6 +18,7 @@ import pytest
 
 import verify.cli as cli
 from verify.cli import main
+from verify.guard import INTERRUPT_GRACE
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ENV = dict(os.environ, PYTHONPATH=ROOT)
@@ -246,7 +247,7 @@ def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
     finally:
         if p.poll() is None:
             p.kill()
-    assert p.returncode == 130 and waited < cli.INTERRUPT_GRACE + 5
+    assert p.returncode == 130 and waited < INTERRUPT_GRACE + 5
     assert json.loads(out) == {"error": "interrupted (Ctrl-C)", "exit_status": 130}
     assert [ln for ln in err.splitlines() if not ln.startswith("trajectory disk:")] == ["error: interrupted (Ctrl-C)"]
 

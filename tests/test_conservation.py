@@ -65,8 +65,8 @@ def test_table_names_each_figure_and_marks_undefined_ratios():
     is undefined, and no prose line that the report's HTML converter would read as a table row."""
     import json
 
-    from verify.conservation import render_markdown
-    from verify.report import render_html
+    from verify.report.conservation import render_markdown
+    from verify.report.html import render_html
 
     row = {"model": "m", "equations": "derived", "precision": "double", "t_end": "10", "outcome": "ok", "steps": 7,
            "max_abs_drift": {"energy": 2e-13, "p": 3e-16}, "max_rel_drift": {"energy": 2e-16, "p": None},

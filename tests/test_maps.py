@@ -36,7 +36,8 @@ from verify.engine.compile import compile_model
 from verify.engine.single import max_step, resolve_parameters, resolve_state, solve
 from verify.precision import parse_precision
 from verify.studies import maps
-from verify.studies.thresholds import GROWTH, steady_state
+from models.steady import steady_state
+from verify.studies.thresholds import GROWTH
 
 FACTORS = np.array([0.5, 0.8, 0.95, 1.05, 1.25, 2.0])  # rates / linear threshold
 TILTS = (1e-6, 1e-3, 1e-1)

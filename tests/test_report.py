@@ -7,7 +7,9 @@ import pytest
 
 from verify.claims import all_claims
 from verify.provenance import write_atomic
-from verify.report import render_html, render_markdown, result_record
+from verify.report.html import render_html
+from verify.report.markdown import render_markdown
+from verify.report.write import result_record
 
 KEYS = {"id", "source", "statement", "verdict", "expected", "observed", "detail"}
 

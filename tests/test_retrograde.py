@@ -18,6 +18,7 @@ import pytest
 from verify.sweep import engine, parse
 from verify.sweep.engine import senses
 from verify.sweep.spec import SENSE_KEYS
+from verify.report import retrograde as retrograde_section
 from verify.studies import retrograde
 
 if sys.version_info >= (3, 11):
@@ -197,8 +198,10 @@ def test_study_summary_counts_and_renders(tmp_path):
         assert len(s["bodies"]) == 8
         assert {b["retrograde_turn"] for b in s["bodies"]} <= {"turns", "does not turn", "undecided"}
         assert s["min_points_per_nutation"] >= 20
-        assert s["figure"][:8] == b"\x89PNG\r\n\x1a\n"
-    text = "\n".join(retrograde.render_markdown(study))
+        figures = retrograde_section.figures(m, *results["sweep"][:2])
+        assert sorted(figures) == [f"retrograde-{m}-roll.png", f"retrograde-{m}.png"]
+        assert all(png[:8] == b"\x89PNG\r\n\x1a\n" for png in figures.values())
+    text = "\n".join(retrograde_section.render_markdown(study))
     assert "## The ring's retrograde turn: air drag or rolling friction" in text and "issue" not in text.lower()
     assert "slow path" in text and "node-turn reading" in text.lower()
 
@@ -208,7 +211,7 @@ def test_full_study_controls_do_not_turn_and_resolve_the_nutation():
     """The study as `make report` runs it (~25-40 s on 2 cores): no conservative control turns, and the
     output grid holds at least 20 points in the shortest nutation of any run."""
     t0 = time.monotonic()
-    study = retrograde.run_study()
+    study = retrograde.run_study().summaries
     assert time.monotonic() - t0 < 600
     for m, s in study.items():
         assert s["control"]["turned"] == s["control"]["read_turned"] == s["control"]["orbit_reversal"] == 0, m

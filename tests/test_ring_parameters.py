@@ -46,7 +46,7 @@ def test_annular_set_rounds_to_the_printed_set(name):
 def test_printed_set_reproduces_the_papers_printed_numbers():
     """cot^-1 h = 1.161 (Fig. 10), theta0 between 1.16 and 1.32 (after Eq. 62, the fast end with the
     paper's + h^2), theta0 = 1.205 at phidot0 = 25.7 (Fig. 11 RHS), each to its printed digits."""
-    from verify.studies.thresholds import ring_theta0_limits, steady_state
+    from models.steady import ring_theta0_limits, steady_state
 
     lim = ring_theta0_limits(ring.PRINTED)
     assert mpmath.nstr(lim["slow"], 4) == "1.161"
@@ -113,19 +113,21 @@ def test_models_listing_says_where_the_defaults_come_from(capsys):
 # --- the report's rows about the paper's ring -----------------------------------------------
 
 def test_report_rows_about_the_papers_ring_use_the_printed_set():
+    from verify.report import sections
     from verify.studies import summary
 
     ring_cases = [c for c in summary.THRESHOLD_CASES if c[0] == "ring"]
     assert ring_cases and all(ring.parameter_set_name(p) == "printed" for _, _, p in ring_cases)
-    assert summary._params_cell({"parameter_set": "printed", "params": dict(ring.PRINTED)}) == \
+    assert sections._params_cell({"parameter_set": "printed", "params": dict(ring.PRINTED)}) == \
         "printed: I1 = 0.4993, I3 = 0.8727, h = 0.4344"
-    assert summary._params_cell({"params": {}}) == "defaults"
-    assert summary._beside("18.68", "18.67") == "18.68 (annular: 18.67)"
-    assert summary._beside("0.410", "0.410") == "0.410"
+    assert sections._params_cell({"params": {}}) == "defaults"
+    assert summary.with_other_set("18.68", "18.67") == "18.68 (annular: 18.67)"
+    assert summary.with_other_set("0.410", "0.410") == "0.410"
 
 
 def test_ring_parameter_comparison_rows():
-    from verify.studies.summary import _ring_parameter_lines, ring_parameter_comparison
+    from verify.report.sections import _ring_parameter_lines
+    from verify.studies.summary import ring_parameter_comparison
 
     rows = {q["quantity"]: q for q in ring_parameter_comparison("straight-line")}
     thr = rows["linear threshold psidot0"]
@@ -139,7 +141,8 @@ def test_ring_parameter_comparison_rows():
 
 
 def test_caption_and_spindown_rows_of_the_ring_are_labelled_and_carry_the_annular_value():
-    from verify.studies.summary import _map_lines, _spindown_lines, caption_rows, spindown_rows
+    from verify.report.sections import _map_lines, _spindown_lines
+    from verify.studies.summary import caption_rows, spindown_rows
 
     caps = [c for c in caption_rows() if c["figure"] in ("Fig. 10", "Fig. 11")]
     assert len(caps) == 4 and all(c["parameter_set"] == "printed" and c["params"] == dict(ring.PRINTED) for c in caps)

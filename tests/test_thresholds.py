@@ -205,7 +205,8 @@ def test_sleeping_structure_check_rejects_a_broken_model():
 
 def test_linear_protocol_predicts_the_nonlinear_deviation():
     """At a 1e-6 tilt the full equations follow the closed-form linear prediction to O(tilt x gain)."""
-    from verify.studies.thresholds import linear_deviation, steady_state
+    from models.steady import steady_state
+    from verify.studies.thresholds import linear_deviation
 
     rate = 1.2 * float(threshold("disk", "diameter-spin").value)
     state = steady_state("disk", "diameter-spin", rate, {})

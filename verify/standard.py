@@ -8,8 +8,10 @@ from __future__ import annotations
 
 import mpmath
 
+from models.common import PAPER_G
+
 with mpmath.workdps(40):  # local: importing this module must not change mpmath's global precision
-    _SQRT_25G = mpmath.nstr(mpmath.sqrt(25 * 980), 40)  # steady precession near theta = 1.20 (Fig. 16)
+    _SQRT_25G = mpmath.nstr(mpmath.sqrt(25 * PAPER_G), 40)  # steady precession near theta = 1.20 (Fig. 16)
 
 STANDARD_STATES = {
     "disk": {"theta": "1.2", "phidot": "1", "psidot": "10"},

@@ -13,6 +13,7 @@ from functools import lru_cache
 import sympy as sp
 
 from models import sliding_disk
+from models.common import PAPER_G
 from models.rolling import derive
 from models.symbols import (
     g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot, time_derivative,
@@ -483,7 +484,7 @@ def _fig6_rates(theta0, family):
 
     acc = derive(k, 2 * k, sp.Integer(-1), sp.Integer(0)).accelerations[0]
     ratio = -sp.cos(theta) if family == "cm-at-rest" else -1 / sp.cos(theta)
-    row = acc.subs({thetadot: 0, psidot: ratio * phidot, k: sp.Rational(1, 4), g: 980})
+    row = acc.subs({thetadot: 0, psidot: ratio * phidot, k: sp.Rational(1, 4), g: PAPER_G})
     f = sp.lambdify((theta, phidot), row, modules="mpmath")
     with mpmath.workdps(40):
         th = mpmath.mpf(sp.N(sp.Rational(theta0), 45))

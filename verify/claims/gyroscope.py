@@ -10,6 +10,7 @@ import mpmath
 import sympy as sp
 
 from models import effective, hurricane, paper
+from models.common import PAPER_G
 from models.symbols import g, phidot, psidot, theta, thetadot, thetaddot, time_derivative
 
 from .base import TYPO, Claim, decide, definition
@@ -208,7 +209,7 @@ def _check_effective_differs():
     rolling = hurricane.model().accelerations[0]
     eff = effective.model().accelerations[0].subs(psidot, phidot)
     diff = sp.simplify(sp.expand_trig(rolling.subs(psidot, phidot) - eff))
-    state = {theta: sp.Rational(6, 5), thetadot: 3, phidot: 150, g: 980, **NUMBERS}
+    state = {theta: sp.Rational(6, 5), thetadot: 3, phidot: 150, g: PAPER_G, **NUMBERS}
     value = sp.N(diff.subs(state), 15)
     inertia_eff = sp.diff(sp.diff(paper.eq96_lagrangian(I1, I3), thetadot), thetadot)  # coefficient of thetaddot
     inertia_81 = sp.diff(paper.eq81_lhs(I1, I3)[0], thetaddot)
@@ -222,8 +223,8 @@ def _check_effective_differs():
 def _steady_root(rate2_over_g, bracket):
     acc = hurricane.model().accelerations[0].subs({thetadot: 0, psidot: phidot})
     f = sp.lambdify((theta, phidot, I1, I3, g), sp.numer(sp.together(acc)), "mpmath")
-    pars = (mpmath.mpf(7) / 5, mpmath.mpf(2) / 5, mpmath.mpf(980))
-    return mpmath.findroot(lambda t: f(t, mpmath.sqrt(rate2_over_g * 980), *pars), bracket, solver="anderson")
+    pars = (mpmath.mpf(7) / 5, mpmath.mpf(2) / 5, mpmath.mpf(PAPER_G))
+    return mpmath.findroot(lambda t: f(t, mpmath.sqrt(rate2_over_g * PAPER_G), *pars), bracket, solver="anderson")
 
 
 def _check_fig15_16_numbers():
@@ -233,10 +234,10 @@ def _check_fig15_16_numbers():
     acc = hurricane.model().accelerations[0].subs({thetadot: 0, psidot: phidot})
     f = sp.lambdify((theta, phidot, I1, I3, g), sp.numer(sp.together(acc)), "mpmath")
     with mpmath.workdps(30):
-        pars = (mpmath.mpf(7) / 5, mpmath.mpf(2) / 5, mpmath.mpf(980))
+        pars = (mpmath.mpf(7) / 5, mpmath.mpf(2) / 5, mpmath.mpf(PAPER_G))
         th16 = _steady_root(25, (mpmath.mpf("0.9"), mpmath.mpf("1.5")))
         th15 = _steady_root(mpmath.mpf("2.6"), (mpmath.mpf("1.4"), mpmath.mpf("1.5707")))
-        slow = mpmath.findroot(lambda r: f(mpmath.pi / 2, r, *pars), (mpmath.mpf(30), mpmath.mpf(80)), solver="anderson") ** 2 / 980
+        slow = mpmath.findroot(lambda r: f(mpmath.pi / 2, r, *pars), (mpmath.mpf(30), mpmath.mpf(80)), solver="anderson") ** 2 / PAPER_G
     ok = abs(slow - mpmath.mpf("2.5")) < 1e-20 and abs(th16 - mpmath.mpf("1.20")) <= 0.005 and 0 < th15 < mpmath.pi / 2
     return decide(ok, f"derived: theta0 reaches pi/2 at phidot^2 = {mpmath.nstr(slow, 8)} g; theta0 at phidot^2 = 2.6 g: "
                       f"{mpmath.nstr(th15, 6)} (below pi/2, so a steady state exists); at phidot^2 = 25 g: {mpmath.nstr(th16, 6)}",

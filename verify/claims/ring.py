@@ -11,6 +11,7 @@ import mpmath
 import sympy as sp
 
 from models import paper, ring
+from models.common import PAPER_G
 from models.rolling import derive
 from models.symbols import g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot
 
@@ -218,7 +219,7 @@ def _ring_numbers():
 def _check_eq61():
     """Leading order on the exact family with no vertical spin (Y -> 0 as theta -> 0)."""
     p = _ring_numbers()
-    G, a1, a3, hh = mpmath.mpf(980), p["I1"], p["I3"], p["h"]
+    G, a1, a3, hh = mpmath.mpf(PAPER_G), p["I1"], p["I3"], p["h"]
     with mpmath.workdps(50):
         th = mpmath.mpf("1e-6")
         S, C = mpmath.sin(th), mpmath.cos(th)
@@ -262,7 +263,7 @@ def _eq62_root(rate):
     """Root in (0, pi/2) of the derived row 1 at psidot = 0, thetadot = 0, the in-hand ring, g = 980."""
     p = _ring_numbers()
     f = sp.lambdify((theta, phidot, I1, I3, h, g), _steady_row1().subs(psidot, 0), "mpmath")
-    args = (rate, p["I1"], p["I3"], p["h"], mpmath.mpf(980))
+    args = (rate, p["I1"], p["I3"], p["h"], mpmath.mpf(PAPER_G))
     return mpmath.findroot(lambda t: f(t, *args), (mpmath.mpf("1.1"), mpmath.mpf("1.4")), solver="anderson")
 
 
@@ -335,7 +336,7 @@ def _fig11_check(rate, printed_text, printed_rate=None):
         angle_ok = abs(root - mpmath.mpf(printed_text)) <= 0.5e-3
         rate_ok = printed_rate is None or abs(rate - mpmath.mpf(printed_rate)) <= 0.05
         offset = mpmath.mpf(printed_text) - root
-        shown_rate = f"sqrt(980) = {mpmath.nstr(rate, 6)} (printed {printed_rate}); " if printed_rate else ""
+        shown_rate = f"sqrt({PAPER_G}) = {mpmath.nstr(rate, 6)} (printed {printed_rate}); " if printed_rate else ""
         return decide(angle_ok and rate_ok, f"{shown_rate}equilibrium angle (root of the derived row 1, psidot = 0) at "
                                             f"phidot0 = {mpmath.nstr(rate, 6)}: {mpmath.nstr(root, 8)}",
                       f"theta0 = {printed_text}", "tolerance half a unit of the last printed digit",
@@ -458,7 +459,7 @@ def claims() -> list:
               "half a unit of the last printed digit",
               quote=r"directly above the contact ($\theta = \cot^{-1} h = 1.161$)", reading=RING),
         Claim("fig-11-lhs-angle", "Fig. 11 LHS (angle)", d, "equilibrium angle theta0 = 1.225 at phidot0 = sqrt(g/R) = 31.3",
-              _fig11_check(mpmath.sqrt(980), "1.225", "31.3"), "numbers", "half a unit of the last printed digit",
+              _fig11_check(mpmath.sqrt(PAPER_G), "1.225", "31.3"), "numbers", "half a unit of the last printed digit",
               known_failure="1.225 is 0.010 above the equilibrium angle 1.2146", severity=RESULT,
               quote=(r"where the ring is started near its equilibrium angle θ_0 , with $\dot{\psi}_0 = 0$",
                      r"LHS: With $\dot{\phi}_0 = \sqrt{g/R} = 31.3$, $\theta_0 = 1.225$: θ oscillates."),

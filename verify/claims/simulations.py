@@ -23,6 +23,7 @@ import mpmath
 import numpy as np
 
 from models import get_model
+from models.common import PAPER_G
 from models.ring import parameter_set
 from verify.behaviour import both_sides, leaves, one_side, oscillates, spirals_out
 from verify.circling import circling
@@ -30,7 +31,7 @@ from verify.engine.single import solve
 
 from .base import RESULT, Claim, Evaluation, FigureData, RunData, decide, definition, qualify, undecided
 
-G = 980.0
+G = float(PAPER_G)
 SQRT_G = math.sqrt(G)
 K = 0.25
 DENSE = 20001  # output points of a run read by the measures: >= 40 a nutation on every run here
@@ -474,7 +475,8 @@ def _check_fig10_rhs():
 
 @lru_cache(maxsize=None)
 def _fig11_runs():
-    from verify.studies.thresholds import steady_state, threshold
+    from models.steady import steady_state
+    from verify.studies.thresholds import threshold
 
     root = float(steady_state("ring", "diameter-spin", "25.7", RING_PRINTED)["theta"])
     out = {"root": root, "threshold": float(threshold("ring", "diameter-spin", RING_PRINTED).value)}
@@ -498,7 +500,7 @@ def _check_fig11_lhs():
 
 
 def _fig11_lhs_root():
-    from verify.studies.thresholds import steady_state
+    from models.steady import steady_state
 
     return float(steady_state("ring", "diameter-spin", repr(SQRT_G), RING_PRINTED)["theta"])
 

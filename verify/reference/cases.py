@@ -24,6 +24,7 @@ import mpmath
 import sympy as sp
 
 from models import get_model
+from models.common import PAPER_G
 from models.symbols import phidot, psidot, theta, thetadot
 
 DIGITS = 40  # digits written for computed initial values (beyond the 128-bit run's 38.5)
@@ -125,7 +126,7 @@ def _exact(expr) -> str:
 
 # --- the cases ------------------------------------------------------------------------------
 
-G = 980
+G = PAPER_G
 _HALF_PI = sp.pi / 2
 
 

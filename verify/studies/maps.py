@@ -51,6 +51,7 @@ import mpmath
 import numpy as np
 
 from models import get_model
+from models.steady import RATE_NAMES
 from models.symbols import phidot, psidot, theta, thetadot
 
 from . import thresholds
@@ -579,7 +580,7 @@ def render_map(smap: StabilityMap) -> bytes:
                                   label=f"left (|dev| = {smap.cap:g} rad, domain end or contact)"))
     if handles:
         ax.legend(handles=handles, loc="upper right", fontsize=7, facecolor="0.85")
-    rate_name = thresholds.RATE_NAMES.get(smap.motion, "rate")
+    rate_name = RATE_NAMES.get(smap.motion, "rate")
     ax.set_xlabel(f"spin rate {rate_name} (rad/s)")
     ax.set_ylabel("log10(initial tilt / rad)")
     shown = ", ".join(f"{k} = {float(v):g}" for k, v in smap.params.items())

@@ -21,17 +21,9 @@ import mpmath
 import sympy as sp
 
 from models import get_model
+from models.steady import MOTIONS, exact_parameters, steady_state
 from models.symbols import phidot, psidot, theta, thetadot
 
-MOTIONS = {
-    "disk": ("diameter-spin", "straight-line"),
-    "sliding-disk": ("diameter-spin",),
-    "ring": ("diameter-spin", "straight-line"),
-    "hurricane": ("precession", "sleeping"),
-    "gyroscope": ("sleeping",),
-}
-RATE_NAMES = {"diameter-spin": "phidot0", "straight-line": "psidot0", "precession": "phidot0",
-              "sleeping": "phidot+psidot"}
 OMEGA = sp.Symbol("Omega", positive=True)
 
 
@@ -89,14 +81,6 @@ def check_reading(params: dict, study: str) -> None:
                              "a value it keeps to 15 digits (magnitude above ~1e-30; a repeating decimal to 16 digits)")
 
 
-def _params(model, values: dict) -> dict:
-    out = {}
-    for p in model.parameters:
-        v = values.get(p.name, p.default)
-        out[p.symbol] = sp.nsimplify(v) if isinstance(v, str) else sp.sympify(v)
-    return out
-
-
 def to_record(t: Threshold, nonlinear=None) -> dict:
     """The JSON object of ``python -m verify threshold --format json``; ``nonlinear`` is (tilt, (lo, hi))."""
     return {
@@ -134,7 +118,7 @@ def threshold(name: str, motion: str, params: Optional[dict] = None, dps: int = 
         # sqrt(g/I3) upwards: that branch lies in 0 < theta0 < pi/2 only for I1 > I3.
         raise ValueError(f"hurricane precession with I1={values['I1']:g}, I3={values['I3']:g}: the Eq. 72 branch this "
                          "study scans (rates above sqrt(g/I3)) needs I1 > I3; allowed: I3 < I1")
-    subs = _params(model, params)
+    subs = exact_parameters(model, params)
     shown = {p.name: str(sp.N(subs[p.symbol], 20)) for p in model.parameters}
     if motion in ("diameter-spin", "straight-line") and name in ("disk", "sliding-disk"):
         steady = {theta: sp.pi / 2, phidot: OMEGA, psidot: 0} if motion == "diameter-spin" else \
@@ -268,66 +252,9 @@ def _sleeping(name, model, subs, shown, dps) -> Threshold:
                      sp.sstr(disc))
 
 
-def ring_theta0_limits(params: Optional[dict] = None, dps: int = 30) -> dict:
-    """The ends of the ring's diameter-spin branch theta0(phidot0) (Eq. 62) for ``params``.
-
-    Parameters
-    ----------
-    params : dict, optional
-        Ring parameters (decimal strings or exact numbers; unset: the defaults, the annular set
-        of :mod:`models.ring`).
-    dps : int
-        Working digits.
-
-    Returns
-    -------
-    dict
-        ``"slow"``: cot^-1 h (phidot0 -> 0: the centre of mass above the contact);
-        ``"fast"``: the root of the phidot0^2 term of Eq. 62, sin(2 theta) (1 + I3 - I1 - h^2)/2 +
-        h cos(2 theta) = 0, i.e. 2 theta0 = atan2(2h, -(1 + I3 - I1 - h^2));
-        ``"fast_as_printed"``: the same with the paper's + h^2 (text after Eq. 62, an erratum).
-        mpmath numbers at ``dps`` digits.
-    """
-    model = get_model("ring")
-    subs = _params(model, dict(params or {}))
-    with mpmath.workdps(dps):
-        pv = {p.name: mpmath.mpf(sp.N(subs[p.symbol], dps + 10)) for p in model.parameters}
-        h, I1, I3 = pv["h"], pv["I1"], pv["I3"]
-        return {"slow": mpmath.acot(h),
-                "fast": mpmath.atan2(2 * h, -(1 + I3 - I1 - h**2)) / 2,
-                "fast_as_printed": mpmath.atan2(2 * h, -(1 + I3 - I1 + h**2)) / 2}
-
-
 # --- confirmation by the full nonlinear equations ----------------------------------------
 
 GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
-
-
-def steady_state(name: str, motion: str, rate, params: dict) -> dict:
-    """The steady motion at ``rate`` as decimal strings (theta, phidot, psidot), 36 digits (beyond quad)."""
-    model = get_model(name)
-    subs = _params(model, params)
-    with mpmath.workdps(40):  # parameters read at 40 digits, not at mpmath's default 15
-        pv = {p.name: mpmath.mpf(sp.N(subs[p.symbol], 40)) for p in model.parameters}
-    with mpmath.workdps(40):
-        rate = mpmath.mpf(rate)
-        if motion == "sleeping":  # upright; the tilt is added by the caller, with phidot = 0
-            th, phd, psd = mpmath.mpf(0), 0, rate
-        elif name in ("disk", "sliding-disk"):
-            th, phd, psd = mpmath.pi / 2, (rate if motion == "diameter-spin" else 0), (rate if motion == "straight-line" else 0)
-        elif motion == "straight-line":
-            th, phd, psd = mpmath.acot(pv["h"]), 0, rate
-        elif name == "ring":
-            row1 = model.accelerations[0].subs({thetadot: 0, psidot: 0}).subs(subs)
-            f = sp.lambdify((theta, phidot), sp.numer(sp.together(row1)), "mpmath")
-            th = mpmath.findroot(lambda t: f(t, rate), (mpmath.acot(pv["h"]), mpmath.pi / 2 - mpmath.mpf("1e-9")),
-                                 solver="anderson")
-            phd, psd = rate, 0
-        else:
-            th = mpmath.acos((pv["I3"] - pv["g"] / rate**2) / (pv["I1"] - pv["I3"]))
-            phd = psd = rate
-        return {"theta": mpmath.nstr(th, 36), "phidot": mpmath.nstr(mpmath.mpf(phd), 36),
-                "psidot": mpmath.nstr(mpmath.mpf(psd), 36)}
 
 
 def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
@@ -369,7 +296,7 @@ def _grid(t_end, n: int = 401):
 def _linear_coefficients(name: str, motion: str, params_key: tuple):
     """Numeric functions of the steady state giving the linearised theta dynamics (see linear_deviation)."""
     model = get_model(name)
-    subs = _params(model, dict(params_key))
+    subs = exact_parameters(model, dict(params_key))
     if motion == "sleeping":
         A, B = sleeping_coefficients(model)
         return sp.lambdify(OMEGA3, (A.subs(subs), B.subs(subs)), "mpmath")

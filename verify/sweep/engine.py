@@ -253,7 +253,7 @@ def _resolved(model_name: str, geometry, items: tuple) -> tuple:
 
 @lru_cache(maxsize=4096)
 def _steady_cached(model: str, motion: str, rate: str, params: tuple) -> dict:
-    from ..studies.thresholds import steady_state
+    from models.steady import steady_state
 
     s = steady_state(model, motion, rate, dict(params))
     with mpmath.workdps(40):

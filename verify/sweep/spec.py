@@ -14,7 +14,7 @@ Example (``verify/sweep/specs/disk-diameter-spin.toml`` ships with the package):
     k = 0.25
 
     [start]                      # the start every run shares...
-    steady = "diameter-spin"     # ...here the steady motion at the rate axis (issue-4 thresholds)
+    steady = "diameter-spin"     # ...here the steady motion at the rate axis (models.steady)
 
     [[axis]]
     name = "phidot"              # a state variable, a parameter, "tilt" (added to theta), or
@@ -293,7 +293,7 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     start_table = dict(_table(data, "start", where))
     steady = start_table.pop("steady", None)
     if steady is not None:
-        from ..studies.thresholds import MOTIONS
+        from models.steady import MOTIONS
 
         allowed = MOTIONS.get(model_name, ())
         if steady not in allowed:

@@ -8,7 +8,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .claims.base import FigureData  # noqa: E402
+from ..claims.base import FigureData  # noqa: E402
 
 ROWS = (("path", "y / R"), ("theta", "theta"), ("phi", "phi"), ("omega3", "omega3"))
 

@@ -7,7 +7,7 @@ results.json; :func:`render` turns that dict, and nothing else, into Markdown.
 """
 from __future__ import annotations
 
-from .claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
+from ..claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
 
 SEVERITY_WORDS = {"result": "a number or conclusion is wrong", "typo": "the printed form is wrong, what follows is right",
                   "rounding": "a last printed digit"}

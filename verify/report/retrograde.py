@@ -1,0 +1,121 @@
+"""REPORT.md's section on the ring's retrograde turn and its figures, rendered from what
+:func:`verify.studies.retrograde.run_study` found: the summaries (results.json's ``studies.retrograde``)
+and each mechanism's sweep (figures retrograde-<mechanism>.png and retrograde-<mechanism>-roll.png)."""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from ..sweep.plot import render
+
+
+def figures(mechanism: str, spec, rows: list) -> dict:
+    """The two maps of one mechanism's sweep, file name -> PNG: the retrograde turn (the spec's own
+    [plot]) and the rolling direction reversed."""
+    roll = replace(spec, plot={**spec.plot, "quantity": "roll_reversal"})
+    return {f"retrograde-{mechanism}.png": render(spec, rows),
+            f"retrograde-{mechanism}-roll.png": render(roll, rows,
+                                                       title=f"ring+{mechanism}: rolling direction reversed (1 = yes)")}
+
+
+def render_markdown(study: dict) -> list:
+    """The report's section on the retrograde turn (figures named retrograde-<mechanism>[-roll].png)."""
+    first = next(iter(study.values()))
+    ppn = [s["min_points_per_nutation"] for s in study.values() if s["min_points_per_nutation"]]
+    lines = [
+        "",
+        "## The ring's retrograde turn: air drag or rolling friction",
+        "",
+        "Both explanations the paper cites are explicit model terms (models/ring_dissipation.py): **air drag** tuned by",
+        "the hole (Jalali et al.: tau = -c A(w) |omega_perp| omega_perp, A(w) = 1 - (1 - w)^5 the rocking drag of an",
+        "annulus relative to a disk) and **viscous rolling friction** (Borisov et al.: tau = -c (omega - (omega.Z) Z)).",
+        "Neither paper's own force laws were available to us; these are the simplest terms with each paper's stated",
+        "property. The sweeps (verify/sweep/specs/ring-retrograde-*.toml, run by `python -m verify sweep`) start every",
+        "body as a coin is spun -- theta0 = 1.2, phidot0 = 40 s^-1, psidot0 = 0 -- over its shape (half-thickness h and",
+        "wall w in units of R, I1 and I3 of an annular cylinder; a flat disk is h = 0.01, w = 1, the paper's ring",
+        "h = 0.4344, w = 0.1366) and the coefficient c, until theta < 0.1 (flat) or 120 s. The conservative control",
+        "(c = 0) runs the same starts for the same time.",
+        "",
+        "**Orbit** is the sense in which the centre of mass circles over many nutation loops: its *slow path*. Each run",
+        "is cut into windows of 12 nutations (the nutation period shrinks from 0.2-0.3 s to 0.05 s as a ring decays, so",
+        "windows count nutations, not seconds) and in each the slow path is read twice, by filters that share nothing",
+        "but the run (verify/circling.py): the CM sampled once per nutation (its winding) and the CM averaged over a",
+        "nutation (the area its mean path sweeps). A window's orbit sense counts only where both turn half a turn or",
+        "more the same way; otherwise the window is **undecided** and neither measure is preferred. A run **turns",
+        "retrograde** when its slow path goes with its spin omega.Z in the first window that decides and against it in",
+        "its last window; it is **undecided** when its last window does not decide (end state not read) or fewer than",
+        "two windows decide ('too short': fewer than 24 nutations before it falls flat). 'As far as read' is the same",
+        "verdict with the last window that decides standing for the end. 'Node-turn reading' is the former criterion --",
+        "the net turn of the line of nodes e1, which counts the loops, not the slow path -- on the same windows, for",
+        f"comparison only. Output every 2.5 ms: at least {min(ppn) if ppn else '-'} points in the shortest nutation of "
+        "any run.",
+        "",
+        "| mechanism | c | runs | turn retrograde | no turn | undecided (too short) | turn / judged as far as read "
+        "| slow path reversed | node-turn reading | rolling direction reversed | fell flat |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+
+    def row(m, c, t, roll):
+        return (f"| {m} | {c} | {t['runs']} | {t['turned']} | {t['judged'] - t['turned']} "
+                f"| {t['undecided']} ({t['too_short']}) | {t['read_turned']}/{t['read_judged']} | {t['orbit_reversal']} "
+                f"| {t['node_turn']} | {roll} | {t['fell_flat']} |")
+
+    for m, s in study.items():
+        lines += [row(m, pc["c"], pc, pc["roll_reversal"]) for pc in s["per_c"]]
+        lines.append(row(f"{m}, control", 0, s["control"], "-"))
+    lines += ["", "Windows undecided: " + "; ".join(
+        f"{m} {s['windows_undecided']} of {s['windows']} (control {s['control_windows_undecided']} of "
+        f"{s['control_windows']})" for m, s in study.items()) + ".", ""]
+    lines += ["Slow-path retrograde turns by thickness h and by wall w (turned/judged with the end state read; as far "
+              "as read in brackets; over the other axis and both c):", "",
+              "| mechanism | " + " | ".join(f"h = {x['h']}" for x in first["by_h"]) + " | "
+              + " | ".join(f"w = {x['w']}" for x in first["by_w"]) + " |",
+              "|---|" + "---:|" * (len(first["by_h"]) + len(first["by_w"]))]
+    for m, s in study.items():
+        lines.append(f"| {m} | " + " | ".join(f"{x['turned']}/{x['judged']} ({x['read_turned']}/{x['read_judged']})"
+                                               for x in s["by_h"] + s["by_w"]) + " |")
+    lines += ["", "The corners of the maps. Senses +/-, 0 undecided, '.' nothing to read; orbit start/end are the first "
+              "and last windows that decide (their span in seconds), spin start/end the run's first and last windows; "
+              "last window: its orbit sense and the two measures' turns there (once per nutation / mean).", "",
+              "| mechanism | body | h | w | c | outcome | t_stop (s) | windows (undecided) | orbit start/end (s) "
+              "| spin start/end | retrograde turn | as far as read (first retrograde window, s) | last window "
+              "| node-turn start/end | rolling reversed |",
+              "|---|---|---:|---:|---:|---|---:|---:|---|---|---|---|---|---|---|"]
+    for m, s in study.items():
+        for b in s["bodies"]:
+            read = b["retrograde_by_last_read"] + (f" ({b['t_retrograde']})" if b["t_retrograde"] is not None else "")
+            windows = "." if b["windows"] is None else f"{b['windows']} ({b['windows_undecided']})"
+            last = f"{_one(b['orbit_last'])}: {_t(b['last_window_turns'][0])}/{_t(b['last_window_turns'][1])}"
+            lines.append(f"| {m} | {b['body']} | {b['h']} | {b['w']} | {b['c']} | {b['outcome']} | {b['t_stop']} "
+                         f"| {windows} | {_sign(b['orbit'])} ({_t(b['t_orbit'][0])}-{_t(b['t_orbit'][1])}) "
+                         f"| {_sign(b['spin'])} | {b['retrograde_turn']} | {read} | {last} | {_sign(b['node_turn'])} "
+                         f"| {'yes' if b['roll_reversal'] else 'no'} |")
+    how = "; ".join(f"{m}: {s['read_turned']} runs turn as far as read ({s['turns_by_orbit_reversal']} of them by "
+                    f"the orbit reversing, {s['turns_by_spin_reversal']} by the spin reversing under an orbit that "
+                    f"keeps its sense), {s['turned']} with the end state read, against {s['node_turn']} by the "
+                    "node-turn reading" for m, s in study.items())
+    lines += ["", "**Verdict.** " + " ".join(s["verdict"] + "." for s in study.values()),
+              f"How the runs turn -- {how}. Where windows are undecided late in a run the two measures mostly disagree "
+              "outright (e.g. -2 turns once per nutation against +9 averaged) or the once-per-nutation samples step "
+              "more than a quarter turn (aliased, no reading): near flat the CM circles at 0.6-0.9 turns per nutation, "
+              "so the loops and the orbit have no separate time scales and there is no slow path to read. "
+              "Conservative controls that turn: "
+              + ", ".join(f"{m} {s['control']['turned']} of {s['control']['runs']}" for m, s in study.items()) + ".",
+              f"Energy: E + W = E(0) along every run to {max(float(s['max_energy_drift_vs_terms']) for s in study.values()):.0e} "
+              "of the energy's scale.", ""]
+    for m in study:
+        lines += [f"![](figures/retrograde-{m}.png)", "", f"![](figures/retrograde-{m}-roll.png)", ""]
+    return lines
+
+
+def _sign(pair) -> str:
+    return "/".join(_one(v) for v in pair)
+
+
+def _one(v) -> str:
+    """+, - or 0 (undecided) for a sense; '.' where there is none to read."""
+    return "." if v is None or (isinstance(v, float) and math.isnan(v)) else ("+" if v > 0 else "-" if v < 0 else "0")
+
+
+def _t(v) -> str:
+    return "." if v is None else f"{v:g}"
