@@ -10,7 +10,7 @@ import pytest
 
 from verify.bench import (Attempt, TARGETS, bare_ensemble, bench_sweep_spec, interleaved, map_starts, ratio_record,
                           render_markdown, run_benchmarks, same_accuracy_speedup, solve_against_bare, sweep_starts,
-                          write_benchmarks, _md_solve)
+                          write_benchmarks, _md_ensembles, _md_solve)
 
 
 def _a(method, setting, seconds, error):
@@ -80,6 +80,12 @@ def test_solve_against_bare_names_every_ratio_with_its_baseline_and_target():
     rows = [ln for ln in text.splitlines() if ln.startswith("| solve")]
     assert len(rows) == 4 and all("bare propagate_until" in ln for ln in rows)
     assert sum("<= 1.25: " in ln for ln in rows) == 1 and sum("<= 1.5: " in ln for ln in rows) == 1
+
+
+def test_a_workload_that_failed_is_shown_as_failed_not_left_out():
+    text = "\n".join(_md_ensembles({"ensembles_vs_bare": [{"workload": "stability map", "error": "ImportError: x"}]}))
+    (row,) = [ln for ln in text.splitlines() if ln.startswith("| stability map")]
+    assert "failed: ImportError: x" in row and "met" not in row
 
 
 def _skeleton(markdown: str) -> list:
