@@ -609,7 +609,8 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--no-bench", action="store_true", help="skip the benchmarks (BENCHMARKS.md is left as it is)")
     r.set_defaults(run=cmd_report)
 
-    b = sub.add_parser("bench", help="benchmarks: work against precision, energy error, sweep throughput, JIT cost")
+    b = sub.add_parser("bench", help="benchmarks: solve, sweeps and maps against bare heyoka, energy error, work against "
+                                     "precision, JIT cost")
     b.add_argument("--out", default="reports", help="output folder (default: reports)")
     b.add_argument("--quick", action="store_true", help="small sizes (for trying the command; not for the report)")
     b.set_defaults(run=cmd_bench)
