@@ -67,7 +67,7 @@ def scalar_runs(name: str, motion: str, smap: maps.StabilityMap, with_conditioni
     pars = resolve_parameters(model, {}, prec)
     compiled = compile_model(model, prec)
     vsys = hy.var_ode_sys(list(compiled.system), hy.var_args.vars, order=1)
-    parr = compiled.system_pars(prec.array(pars.values()))
+    parr = compiled.parameter_vector(pars)
     red = (0, 3, 4, 5)  # theta, thetadot, phidot, psidot
     out = {"deviation": np.zeros(smap.left.shape), "left": np.zeros(smap.left.shape, bool),
            "t_cross": np.full(smap.left.shape, np.nan), "bound": np.full(smap.left.shape, np.nan)}

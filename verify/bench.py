@@ -475,7 +475,7 @@ def heyoka_attempt(problem: ReferenceProblem, precision: str, tol=None, repeats:
     kw = prec.integrator_kwargs()
     if tol is not None:
         kw["tol"] = prec.number(tol)
-    parr = compiled.system_pars(prec.array(pars.values()))
+    parr = compiled.parameter_vector(pars)
     t_end = prec.number(problem.t(index))
     h_max = max_step(y0, pars, prec)
     ta = hy.taylor_adaptive(list(compiled.system), y0, pars=parr, **kw)  # construction outside the timing
@@ -500,7 +500,7 @@ def _compiled_rhs(problem: ReferenceProblem):
     compiled = compile_model(problem.model, prec)
     exprs = [r for _, r in compiled.system]
     variables = list(compiled.variables)
-    parr = np.ascontiguousarray(compiled.system_pars(prec.array(pars.values())))
+    parr = np.ascontiguousarray(compiled.parameter_vector(pars))
     rhs = hy.cfunc(exprs, variables)
     jac = hy.cfunc([hy.diff(e, v) for e in exprs for v in variables], variables)
     n = len(variables)
@@ -816,6 +816,7 @@ t0 = time.perf_counter()
 import heyoka as hy
 t_import = time.perf_counter() - t0
 from models import get_model
+from models.common import PAPER_G
 from verify.engine.compile import compile_model
 from verify.precision import parse_precision
 t0 = time.perf_counter()
@@ -828,11 +829,11 @@ for label, precision, compact in json.loads(sys.argv[1]):
     kw = prec.integrator_kwargs(); kw["compact_mode"] = compact
     t0 = time.perf_counter()
     hy.taylor_adaptive(list(c.system), [1.2, 0, 0, 0, 1, 10, 0, 0] if precision == "double" else
-                       prec.array(["1.2", 0, 0, 0, 1, 10, 0, 0]), pars=prec.array([prec.number("0.25"), prec.number(980)]), **kw)
+                       prec.array(["1.2", 0, 0, 0, 1, 10, 0, 0]), pars=c.parameter_vector({"k": prec.number("0.25"), "g": prec.number(PAPER_G)}), **kw)
     first = time.perf_counter() - t0
     t0 = time.perf_counter()
     hy.taylor_adaptive(list(c.system), [1.2, 0, 0, 0, 1, 10, 0, 0] if precision == "double" else
-                       prec.array(["1.2", 0, 0, 0, 1, 10, 0, 0]), pars=prec.array([prec.number("0.25"), prec.number(980)]), **kw)
+                       prec.array(["1.2", 0, 0, 0, 1, 10, 0, 0]), pars=c.parameter_vector({"k": prec.number("0.25"), "g": prec.number(PAPER_G)}), **kw)
     out[label] = {"first": first, "again_in_process": time.perf_counter() - t0}
 out["max_rss_mib"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 print(json.dumps(out))

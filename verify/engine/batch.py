@@ -10,7 +10,7 @@ maps (:mod:`verify.studies.maps`) are its users.
 * :func:`lane_failures` and :func:`alone` detect and isolate the lanes that failed;
 * :func:`per_run` evaluates a compiled function over the samples of many runs at once with the
   bits of one call per run;
-* :func:`fastest_rate` and :func:`step_cap`: the step cap, one radian of the fastest rate.
+* :func:`fastest_rate` and :func:`step_cap` (from :mod:`.problem`): the step cap, one radian of the fastest rate.
 
 Terminal events in batch mode
 -----------------------------
@@ -35,7 +35,6 @@ the chunking.
 from __future__ import annotations
 
 import copy
-import math
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from types import SimpleNamespace
@@ -45,6 +44,7 @@ import heyoka as hy
 import numpy as np
 
 from . import heyoka_log
+from .problem import fastest_rate, step_cap  # noqa: F401 - the step cap, as solve() caps its steps
 
 
 @dataclass(frozen=True)
@@ -55,20 +55,6 @@ class Lanes:
     alive: int
     reason: int
     t_stop: int
-
-
-def fastest_rate(rates: Sequence[float], g: Optional[float] = None) -> float:
-    """The fastest of |rates| and sqrt(g) (rad/s): the rate the step cap is one radian of."""
-    values = [abs(float(r)) for r in rates]
-    if g is not None:
-        values.append(math.sqrt(float(g)))
-    return max(values)
-
-
-def step_cap(rates: Sequence[float], g: Optional[float] = None) -> float:
-    """The largest step in double: one radian of :func:`fastest_rate` (see
-    :func:`verify.engine.single.max_step` for why heyoka's steps need a cap)."""
-    return 1.0 / fastest_rate(rates, g)
 
 
 class Freeze:

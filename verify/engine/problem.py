@@ -8,7 +8,9 @@ the order of a mapping.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Optional, Sequence
 
 import numpy as np
 
@@ -99,5 +101,18 @@ def max_step(y0, pars: dict, prec: Precision):
     the Eq. 45 state at theta = 0.1 in quad).  Capping Omega h at 1 keeps the truncated
     terms below 1/p!.  On ordinary motions the cap does not bind (typical Omega h ~ 0.03).
     """
-    rates = [abs(float(y0[i])) for i in (3, 4, 5)] + [float(pars.get("g", 1)) ** 0.5]
-    return prec.number(1) / prec.number(max(rates))
+    return prec.number(1) / prec.number(fastest_rate([y0[i] for i in (3, 4, 5)], pars.get("g", 1)))
+
+
+def fastest_rate(rates: Sequence[float], g: Optional[float] = None) -> float:
+    """The fastest of |rates| and sqrt(g) (rad/s): the rate the step cap is one radian of."""
+    values = [abs(float(r)) for r in rates]
+    if g is not None:
+        values.append(math.sqrt(float(g)))
+    return max(values)
+
+
+def step_cap(rates: Sequence[float], g: Optional[float] = None) -> float:
+    """The largest step in double: one radian of :func:`fastest_rate` (see
+    :func:`max_step` for why heyoka's steps need a cap)."""
+    return 1.0 / fastest_rate(rates, g)

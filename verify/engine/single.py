@@ -377,7 +377,7 @@ def solve(
         Stop at the domain's ends and at loss of contact (default True).  Without events
         neither is enforced (the integrator then has no events compiled at all); a run whose
         theta leaves the domain then ends ``outside_domain``.  What they cost, measured on the
-        disk's standard start by ``scripts/event_costs.py`` (bare heyoka, t_end 10 / 100 s, 2
+        disk's standard start by ``benchmarks/event_costs.py`` (bare heyoka, t_end 10 / 100 s, 2
         shared cores): the domain's two ends +18 % / +8 %, ``contact_lost`` +53 % / +38 % (its
         function is the normal force, whose Taylor coefficients heyoka computes every step),
         all three +56 % / +42 %.

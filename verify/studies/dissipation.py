@@ -68,6 +68,7 @@ import sympy as sp
 from models import disk
 from models.dissipative import LAW_NAMES, c as C_SYMBOL, dissipative_disk, law as get_law, work_rate
 from models.rolling import derive
+from models.common import PAPER_G
 from models.symbols import STATE_NAMES, g, phidot, psidot, theta, thetadot
 
 from ..engine import invariants as inv
@@ -311,7 +312,7 @@ def _transport_system(name: str):
     sub = {thetadot: 0, psidot: w3 - phidot * sp.cos(theta)}
     row = sp.numer(sp.together(model.accelerations[0].subs(sub)))
     family_rate = sp.sqrt(family_law(name).phidot_squared)
-    probe = {theta: sp.Rational(1, 10), disk.k: sp.Rational(1, 4), g: 980, w3: 0}
+    probe = {theta: sp.Rational(1, 10), disk.k: sp.Rational(1, 4), g: PAPER_G, w3: 0}
     roots = [r for r in sp.solve(row, phidot) if abs(sp.N((r - family_rate).subs(probe), 30)) < 1e-20]
     if len(roots) != 1:
         raise RuntimeError("no unique steady phidot continuing the cm-at-rest family")

@@ -63,6 +63,7 @@ import numpy as np
 import sympy as sp
 
 from models import get_model
+from models.common import PAPER_G
 from models.ring_dissipation import annulus_inertia
 from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
 
@@ -324,7 +325,7 @@ def fastest_rate(spec: SweepSpec) -> float:
     for a in spec.axes:
         if a.name in ("thetadot", "phidot", "psidot"):  # a monotone axis: its ends are its extremes
             rates += list(a.values.extremes)
-    g = spec.params.get("g", 980.0)
+    g = spec.params.get("g", float(PAPER_G))
     for a in spec.axes:
         if a.name == "g":
             g = a.values.extremes[1]

@@ -5,7 +5,7 @@ theta = pi, both ``lies_flat``), ``contact_lost`` (N = 0), all three -- on the d
 equations from its standard start, tolerance epsilon; each reset and run to t_end interleaved
 with the others, REPEATS times; medians and ratios to the run without events are printed.
 
-Usage: PYTHONPATH=. python scripts/event_costs.py [REPEATS]
+Usage: PYTHONPATH=. python benchmarks/event_costs.py [REPEATS]
 """
 from __future__ import annotations
 
