@@ -111,7 +111,7 @@ class Precision:
                 raise ValueError(f"{value!r} is not a finite number")
             return self._from_decimal(text)
         if isinstance(value, (sp.Basic, Fraction, int)) and not isinstance(value, bool):
-            frac = Fraction(str(sp.Rational(value))) if isinstance(value, sp.Basic) and sp.sympify(value).is_Rational else None
+            frac = Fraction(int(value.p), int(value.q)) if isinstance(value, sp.Basic) and value.is_Rational else None
             if frac is None and isinstance(value, (Fraction, int)):
                 frac = Fraction(value)
             if frac is not None:
