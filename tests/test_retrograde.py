@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 import sys
-import time
 
 import numpy as np
 import pytest
@@ -210,9 +209,7 @@ def test_study_summary_counts_and_renders(tmp_path):
 def test_full_study_controls_do_not_turn_and_resolve_the_nutation():
     """The study as `make report` runs it (~25-40 s on 2 cores): no conservative control turns, and the
     output grid holds at least 20 points in the shortest nutation of any run."""
-    t0 = time.monotonic()
-    study = retrograde.run_study().summaries
-    assert time.monotonic() - t0 < 600
+    study = retrograde.run_study().summaries  # (its speed is the benchmark's business, not a test's)
     for m, s in study.items():
         assert s["control"]["turned"] == s["control"]["read_turned"] == s["control"]["orbit_reversal"] == 0, m
         assert s["min_points_per_nutation"] >= 20, m
