@@ -143,8 +143,16 @@ def check(argv, fmt):
     assert len(lines) == 1 and lines[0].startswith("error: "), note
     if code == 2:
         shown = lines[0]
-        given = list(argv) + [part for a in argv if "=" in a for part in a.partition("=")[::2]]
-        assert any((g.strip() and g.strip() in shown) or repr(g) in shown or repr(g.strip()) in shown for g in given), note
+        # the values the user gave, not the command's own words: no subcommand, no option names, no --format
+        # value (every message would contain one of those, and the check could not fail)
+        values = [a for i, a in enumerate(argv[1:], 1)
+                  if not (a.startswith("--") and a[2:3].isalpha()) and argv[i - 1] != "--format"]
+        values += [a.partition("=")[2] for a in argv if a.startswith("--") and "=" in a]  # --tol=VALUE
+        given = values + [part for a in values if "=" in a for part in a.partition("=")[::2]]
+        # (a value that looks like an option, '-ring' for the model, leaves the positional missing: argparse
+        # then names the missing argument instead of the value)
+        assert any((g.strip() and g.strip() in shown) or repr(g) in shown or repr(g.strip()) in shown for g in given) \
+            or ("the following arguments are required" in shown and any(g.startswith("-") for g in values)), note
     return code
 
 

@@ -288,3 +288,25 @@ def test_memory_per_chunk_is_bounded(tmp_path):
 def test_the_shipped_sweeps_are_within_the_limits():
     for path in sorted(SPECS.glob("*.toml")):
         assert estimate(load(path), threads=2).over() == [], path.name
+
+
+@pytest.mark.parametrize("precision,theta", [("quad", "1e-400"), ("mp:200", "1e-1000"),
+                                             ("quad", "3.141592653589793"), ("long", "3.14159265358979323")])
+def test_the_domain_is_checked_at_the_starts_own_precision(precision, theta):
+    """theta = 1e-400 is a positive quad number (0 in double), and float(pi) < pi in quad and long:
+    both are inside (0, pi) at those precisions, whatever double would say."""
+    from models import get_model
+    from verify import parse_precision
+    from verify.engine.validation import validate
+
+    validate(get_model("disk"), {"theta": theta, "psidot": "10"}, None, parse_precision(precision))
+
+
+def test_the_domain_end_rounded_to_double_is_refused_in_double():
+    """Negative control of the test above: in double float(pi) is the domain's end itself."""
+    from models import get_model
+    from verify import parse_precision
+    from verify.engine.validation import InvalidStart, validate
+
+    with pytest.raises(InvalidStart, match="outside the domain"):
+        validate(get_model("disk"), {"theta": "3.141592653589793", "psidot": "10"}, None, parse_precision("double"))

@@ -182,9 +182,7 @@ def start_problems(model: Model, states, normal=None, shown=None):
     add(np.flatnonzero(bad.any(axis=0)), "non_finite",
         lambda j: f"state {STATE_NAMES[int(np.flatnonzero(bad[:, j])[0])]}="
                   f"{shown_value(j, int(np.flatnonzero(bad[:, j])[0]))} is not a finite number")
-    th = as_float[0]
-    with np.errstate(invalid="ignore"):
-        outside = ~((lo < th) & (th < hi))
+    outside = ~_inside_domain(dom, states[0], as_float[0])
     add(np.flatnonzero(outside), "outside_domain",
         lambda j: f"state theta={shown_value(j, 0)} is outside the domain of {model.name!r}: {lo:.17g} < theta < "
                   f"{hi:.17g} (at the lower end: {dom.below}; at the upper end: {dom.above})")
@@ -203,6 +201,31 @@ def start_problems(model: Model, states, normal=None, shown=None):
                        "the precision; allowed: states with a finite N > 0"))
     problems.sort()
     return problems
+
+
+def _domain_end(end, like):
+    """A domain end (sympy: 0, pi, ...) rounded to the type of ``like``, a value of the start."""
+    if isinstance(like, hy.real):
+        return hy.real(str(sp.N(end, int(like.prec * 0.302) + 10)), like.prec)
+    if isinstance(like, hy.real128):
+        return hy.real128(str(sp.N(end, 45)))
+    if isinstance(like, np.longdouble):
+        return np.longdouble(str(sp.N(end, 30)))
+    return float(end)
+
+
+def _inside_domain(dom, thetas, as_float) -> np.ndarray:
+    """theta_min < theta < theta_max for each start, compared at the start's own precision (in double a
+    quad theta of 1e-400 would be 0, and one between float(pi) and pi would sit on the end)."""
+    if thetas.dtype == np.float64:
+        with np.errstate(invalid="ignore"):
+            return (float(dom.theta_min) < as_float) & (as_float < float(dom.theta_max))
+    out = np.zeros(len(thetas), bool)
+    for j, th in enumerate(thetas):
+        if math.isnan(float(th)):
+            continue
+        out[j] = bool(_domain_end(dom.theta_min, th) < th < _domain_end(dom.theta_max, th))
+    return out
 
 
 def _text(value) -> str:
