@@ -26,6 +26,7 @@ from models.dissipative import LAW_NAMES, c, couple, dissipative_disk, law, moff
 from models.rolling import derive
 from models.symbols import ACCELERATIONS, g, omega_body, theta, thetadot, time_derivative
 from verify import solve
+from verify.report.study_figures import render_dissipation
 from verify.studies import dissipation as D
 from verify.studies.spindown import spindown
 
@@ -202,9 +203,9 @@ def test_records_and_figure(fast_studies):
     text = json.dumps(rec)
     assert json.loads(text)[0]["fit"]["p_predicted"] == "1/3"
     assert isinstance(rec[1]["fit"]["p"], str) and rec[1]["fit"]["p_ok"] is True
-    png = D.render_dissipation(studies)
+    png = render_dissipation(studies)
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
-    assert png == D.render_dissipation(studies)  # no timestamps
+    assert png == render_dissipation(studies)  # no timestamps
 
 
 @pytest.mark.slow

@@ -35,6 +35,7 @@ from models import get_model
 from verify.engine.compile import compile_model
 from verify.engine.single import max_step, resolve_parameters, resolve_state, solve
 from verify.precision import parse_precision
+from verify.report.study_figures import render_map
 from verify.studies import maps
 from models.steady import steady_state
 from verify.studies.thresholds import GROWTH
@@ -190,7 +191,7 @@ def test_deterministic_whatever_the_threads(disk_map):
     for name in ("max_deviation", "left", "reason", "t_left", "theta_steady"):
         assert getattr(again, name).tobytes() == getattr(disk_map, name).tobytes(), name
     assert again.n_steps == disk_map.n_steps
-    assert maps.render_map(again) == maps.render_map(disk_map)
+    assert render_map(again) == render_map(disk_map)
 
 
 def test_point_independent_of_its_batch_partners(disk_map):
@@ -209,7 +210,7 @@ def test_left_runs_report_cap_reason_and_time(disk_map):
 
 
 def test_render_map_png(disk_map):
-    png = maps.render_map(disk_map)
+    png = render_map(disk_map)
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000
 
 

@@ -1,4 +1,7 @@
-"""Figures: run data in, PNG bytes out (matplotlib, Agg, no timestamps in the file)."""
+"""Figures: run data in, PNG bytes out (matplotlib, Agg, no timestamps in the file).
+
+:func:`render` draws a caption's runs; :func:`png_bytes` is the one place a figure becomes bytes
+(:mod:`.study_figures` draws the studies' figures with it)."""
 from __future__ import annotations
 
 import io
@@ -31,6 +34,11 @@ def render(fig_data: FigureData) -> bytes:
         axes[0][j].set_ylabel(fig_data.path_label + ": " + ROWS[0][1])
     fig.suptitle(fig_data.title, fontsize=10)
     fig.tight_layout()
+    return png_bytes(fig)
+
+
+def png_bytes(fig) -> bytes:
+    """The figure as PNG bytes (72 dpi, no software or date metadata: reproducible), then closed."""
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=72, metadata={"Software": None})
     plt.close(fig)

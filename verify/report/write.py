@@ -2,7 +2,8 @@
 
 Evaluates every claim of the registry, runs the conservation table and the studies (each
 returns data), renders that data (:mod:`.markdown`, :mod:`.html`, :mod:`.sections`,
-:mod:`.retrograde`, :mod:`.conservation`, :mod:`.summary`, :mod:`.figures`) and is the one
+:mod:`.retrograde`, :mod:`.conservation`, :mod:`.summary`, :mod:`.figures`,
+:mod:`.study_figures`) and is the one
 writer of ``reports/REPORT.md``, ``reports/report.html``, ``reports/results.json``,
 ``reports/conservation.{md,json}``, ``reports/figures/`` and ``reports/timing.json`` (the only
 file whose content changes from run to run).
@@ -59,38 +60,6 @@ def _conservation_job():
     return rows, round(time.monotonic() - t0, 1)
 
 
-MAPS = (("disk", "diameter-spin"), ("sliding-disk", "diameter-spin"), ("disk", "straight-line"),
-        ("ring", "straight-line"), ("ring", "diameter-spin"))
-
-
-def _maps(say):
-    """Stability maps of 100 rates x 100 tilts (10 s each) by heyoka batch + ensemble: rows, PNGs, timing."""
-    import numpy as np
-
-    from ..studies.maps import render_map, stability_map, switch_bracket
-    from ..studies.thresholds import threshold
-
-    rows, images, timing = [], {}, []
-    from models.ring import parameter_set
-
-    for model, motion in MAPS:
-        say(f"  stability map {model} {motion} (10^4 trajectories)")
-        params = dict(parameter_set("printed")) if model == "ring" else None  # the paper's own ring
-        lin = float(threshold(model, motion, params).value)
-        smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100),
-                             params=params)
-        name = f"map-{model}-{motion}.png"
-        images[name] = render_map(smap)
-        lo, hi = switch_bracket(smap)
-        rows.append({"model": model, "motion": motion, "params": params or {}, "figure": f"figures/{name}",
-                     "trajectories": smap.n_trajectories,
-                     "t_end": smap.t_end, "linear_threshold": f"{lin:.12g}",
-                     "switch_at_tilt_1e-6": [f"{lo:.6g}", f"{hi:.6g}"]})
-        timing.append({"model": model, "motion": motion, "trajectories": smap.n_trajectories,
-                       "wall_seconds": round(smap.wall_seconds, 2), "batch_size": smap.batch_size})
-    return rows, images, timing
-
-
 def _reference_check_job(precision: str):
     from ..reference import check_set
 
@@ -121,15 +90,17 @@ def write_report(out="reports", bench: bool = True) -> None:
         results = evaluate_all(progress=lambda s: say("  " + s))
         timing["claims_seconds"] = round(time.monotonic() - t0, 1)
         t1 = time.monotonic()
-        from ..studies.summary import caption_rows, precision_rows, spindown_rows, threshold_rows
+        from ..studies.summary import caption_rows, map_rows, precision_rows, spindown_rows, threshold_rows
+        from .study_figures import render_dissipation, render_map
 
         studies = {"thresholds": threshold_rows(progress=lambda s: say("  " + s)), "captions": caption_rows(),
                    "spindown": spindown_rows(), "precision": precision_rows()}
         study_images = {}
-        studies["maps"], map_images, timing["stability_maps"] = _maps(say)
-        study_images.update(map_images)
+        studies["maps"], maps, timing["stability_maps"] = map_rows(progress=lambda s: say("  " + s))
+        for row, smap in zip(studies["maps"], maps):
+            study_images[row["figure"].removeprefix("figures/")] = render_map(smap)
         say("  dissipative spin-down (Moffatt, contact-rate)")
-        from ..studies.dissipation import dissipation_study, render_dissipation, to_record as dissipation_record
+        from ..studies.dissipation import dissipation_study, to_record as dissipation_record
 
         t2 = time.monotonic()
         laws = dissipation_study()

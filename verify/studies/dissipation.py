@@ -54,7 +54,6 @@ nutation of relative size ~a(theta0) < 1e-6, damped by the couple.
 """
 from __future__ import annotations
 
-import io
 import math
 import time
 from dataclasses import dataclass
@@ -648,7 +647,7 @@ def dissipation_study(laws=LAW_NAMES, progress=None) -> tuple:
     return tuple(out)
 
 
-# --- records and figure ---------------------------------------------------------------------------
+# --- records ------------------------------------------------------------------------------
 
 def _d(x, digits: int = 12) -> str:
     """A decimal string (mpmath, sympy, float)."""
@@ -705,51 +704,3 @@ def to_record(s: LawStudy) -> dict:
             "breakdown_theta": _d(fit.breakdown_theta, 4),
         },
     }
-
-
-def render_dissipation(results) -> bytes:
-    """PNG of theta and phidot (secant) against t0 - t, log-log, one column per law, with the
-    predicted slopes p and q drawn through the middle of the fit window (shaded)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    results = tuple(results)
-    fig, axes = plt.subplots(2, len(results), figsize=(5.2 * len(results), 7.5), squeeze=False)
-    for j, s in enumerate(results):
-        _panels(axes[0][j], axes[1][j], s)
-    fig.suptitle("Dissipative spin-down of the disk towards theta = 0 (fit window shaded)", fontsize=10)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=72, metadata={"Software": None})
-    plt.close(fig)
-    return buf.getvalue()
-
-
-def _panels(ax_theta, ax_phidot, s: LawStudy):
-    fit, run = s.fit, s.run
-    t, th = np.asarray(run.t, float), np.asarray(run["theta"], float)
-    mid, _, phd = secants(run)
-    tmid = np.interp(-np.log(mid), -np.log(th), t)  # the time each secant's mid-angle is passed
-    lo, hi = fit.window
-    series = ((ax_theta, fit.t0 - t, th, th, fit.p_predicted, "theta"),
-              (ax_phidot, fit.t0 - tmid, phd, mid, fit.q_predicted, "phidot / s^-1 (secant)"))
-    for ax, tau, y, angle, slope, label in series:
-        keep = (tau > 0) & (y > 0)
-        ax.loglog(tau[keep], y[keep], ".", ms=3, label=f"run, c = {float(s.prediction.c):g} ({run.outcome})")
-        centre = np.nonzero(keep & (angle >= lo) & (angle <= hi))[0]
-        if len(centre):
-            i = centre[len(centre) // 2]
-            xs = np.geomspace(tau[keep].min(), tau[keep].max(), 50)
-            ax.loglog(xs, y[i] * (xs / tau[i]) ** float(slope), "-", lw=0.8, label=f"slope {slope} (predicted)")
-        band = fit.t0 - np.interp(-np.log([hi, lo]), -np.log(th), t)
-        ax.axvspan(band.min(), band.max(), color="0.9", zorder=0)
-        at = fit.t0 - np.interp(-math.log(fit.breakdown_theta), -np.log(th), t) if math.isfinite(fit.breakdown_theta) else 0
-        if at > 0:
-            ax.axvline(at, color="0.4", ls=":", lw=0.8, label=f"breakdown, theta = {fit.breakdown_theta:.2g}")
-        ax.set_xlabel("t0 - t / s")
-        ax.set_ylabel(label)
-        ax.legend(fontsize=7)
-    ax_theta.set_title(f"{s.law} (n = {s.family.exponent}): p = {fit.p:.5f} (predicted {fit.p_predicted}), "
-                       f"q = {fit.q:.5f} ({fit.q_predicted})", fontsize=8)

@@ -38,7 +38,6 @@ the same bytes with other batch partners (rates reversed) and with batch size 4 
 """
 from __future__ import annotations
 
-import io
 import math
 import os
 import time
@@ -51,7 +50,6 @@ import mpmath
 import numpy as np
 
 from models import get_model
-from models.steady import RATE_NAMES
 from models.symbols import phidot, psidot, theta, thetadot
 
 from . import thresholds
@@ -529,69 +527,3 @@ def consistent_with_threshold(smap: StabilityMap, value: float, tilt_index: int 
     """
     br = switch_bracket(smap, tilt_index)
     return br is not None and br[0] < float(value) < br[1]
-
-
-# --- the figure ---------------------------------------------------------------------------------
-
-def render_map(smap: StabilityMap) -> bytes:
-    """PNG of the map: x = rate, y = log10(tilt), colour = log10(max deviation / tilt).
-
-    The linear threshold is a vertical red line whose legend label gives its value; the
-    contour where the growth factor reaches GROWTH (the classification of
-    :func:`thresholds.grows`) is white, the edge of the runs that left is dashed black.
-    The title names model, motion and parameters.
-
-    Parameters
-    ----------
-    smap : StabilityMap
-
-    Returns
-    -------
-    bytes
-        The PNG (matplotlib Agg, 72 dpi, no software or date metadata: reproducible bytes).
-    """
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.lines import Line2D
-
-    ly = np.log10(smap.tilts)
-    colour = np.log10(np.maximum(smap.growth, np.finfo(float).tiny))
-    fig, ax = plt.subplots(figsize=(7.5, 5.0))
-    mesh = ax.pcolormesh(smap.rates, ly, colour, shading="nearest", cmap="viridis")
-    bar = fig.colorbar(mesh, ax=ax)
-    bar.set_label("log10(max |theta - theta_steady| / tilt)")
-    handles = []
-    if smap.linear_threshold is not None:
-        handles.append(ax.axvline(smap.linear_threshold, color="red", lw=1.2,
-                                  label=f"linear threshold {smap.linear_threshold:.6g}"))
-    if len(smap.rates) > 1 and len(smap.tilts) > 1:
-        order = np.argsort(smap.rates)
-        rows = np.argsort(ly)
-        x, y = smap.rates[order], ly[rows]
-        if colour.min() < math.log10(GROWTH) < colour.max():
-            ax.contour(x, y, colour[np.ix_(rows, order)], levels=[math.log10(GROWTH)], colors="white", linewidths=0.9)
-            handles.append(Line2D([], [], color="white", lw=0.9, label=f"growth = {GROWTH}"))
-        if smap.left.any() and not smap.left.all():
-            ax.contour(x, y, smap.left[np.ix_(rows, order)].astype(float), levels=[0.5], colors="black",
-                       linewidths=0.9, linestyles="dashed")
-            handles.append(Line2D([], [], color="black", lw=0.9, ls="dashed",
-                                  label=f"left (|dev| = {smap.cap:g} rad, domain end or contact)"))
-    if handles:
-        ax.legend(handles=handles, loc="upper right", fontsize=7, facecolor="0.85")
-    rate_name = RATE_NAMES.get(smap.motion, "rate")
-    ax.set_xlabel(f"spin rate {rate_name} (rad/s)")
-    ax.set_ylabel("log10(initial tilt / rad)")
-    shown = ", ".join(f"{k} = {float(v):g}" for k, v in smap.params.items())
-    if smap.model.startswith("ring"):  # name the ring's parameter set (models.ring: annular defaults or printed)
-        from models.ring import parameter_set_name
-
-        shown = f"{parameter_set_name(smap.params) or 'other'} set: {shown}"
-    ax.set_title(f"{smap.model}, {smap.motion} ({shown}): growth of a theta perturbation in {smap.t_end:g} s",
-                 fontsize=9)
-    fig.tight_layout()
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=72, metadata={"Software": None})
-    plt.close(fig)
-    return buf.getvalue()

@@ -1,5 +1,6 @@
 """The stability and spin-down studies as data for the report: thresholds (linear, nonlinear,
-variational), the figure captions against them, the spin-down families and their precision.
+variational), the figure captions against them, the stability maps, the spin-down families and
+their precision.
 :mod:`verify.report.sections` renders these rows.
 
 The ring's rows are about "the paper's ring", so they are computed for the paper's printed
@@ -277,6 +278,42 @@ def caption_rows() -> list:
                               f"{'stable' if stable else 'unstable'}; " + "; ".join(runs),
                      "verdict": _verdict(says == "oscillates", stable, w3, sleeping)})
     return rows
+
+
+#: The report's stability maps: (model, motion), 100 rates x 100 tilts each.
+MAPS = (("disk", "diameter-spin"), ("sliding-disk", "diameter-spin"), ("disk", "straight-line"),
+        ("ring", "straight-line"), ("ring", "diameter-spin"))
+
+
+def map_rows(progress=None) -> tuple:
+    """The report's stability maps (:data:`MAPS`) of 100 rates x 100 tilts (10 s each) by heyoka batch + ensemble.
+
+    The rates run from 0.5 to 1.5 x the linear threshold, the tilts from 1e-6 to 1e-1; the ring
+    is the paper's (printed parameters).  Returns ``(rows, maps, timing)``: one row per map for
+    results.json (its figure's file name under ``figures/`` included), the
+    :class:`~verify.studies.maps.StabilityMap` of each row, for the figures, and the wall times.
+    """
+    import numpy as np
+
+    from .maps import stability_map, switch_bracket
+
+    rows, maps, timing = [], [], []
+    for model, motion in MAPS:
+        if progress:
+            progress(f"stability map {model} {motion} (10^4 trajectories)")
+        params = dict(ring_body.parameter_set("printed")) if model == "ring" else None  # the paper's own ring
+        lin = float(threshold(model, motion, params).value)
+        smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100),
+                             params=params)
+        lo, hi = switch_bracket(smap)
+        rows.append({"model": model, "motion": motion, "params": params or {}, "figure": f"figures/map-{model}-{motion}.png",
+                     "trajectories": smap.n_trajectories,
+                     "t_end": smap.t_end, "linear_threshold": f"{lin:.12g}",
+                     "switch_at_tilt_1e-6": [f"{lo:.6g}", f"{hi:.6g}"]})
+        maps.append(smap)
+        timing.append({"model": model, "motion": motion, "trajectories": smap.n_trajectories,
+                       "wall_seconds": round(smap.wall_seconds, 2), "batch_size": smap.batch_size})
+    return rows, maps, timing
 
 
 def spindown_rows() -> list:
