@@ -102,6 +102,6 @@ def test_a_misprinted_number_is_caught():
 def test_citation_check_counts_printed_components():
     """Negative control for the Fig. 19 citation check: it reads the paper, so a 3-vector equation
     (Eq. 18, Eq. 81) counts 3 and the scalar Eq. 82 counts 1."""
-    from verify.claims.simulations import _printed_components
+    from verify.claims.simulations.hurricane import _printed_components
 
     assert (_printed_components(18), _printed_components(81), _printed_components(82)) == (3, 3, 1)

@@ -121,7 +121,7 @@ def test_spiral_out_against_circle_and_straight_line():
 
 def test_mirror_image_reverses_the_slow_sense():
     """Physical control: the ring's run and its mirror image (phidot, psidot -> -phidot, -psidot)."""
-    from verify.claims import simulations as S
+    from verify.claims.simulations import ring as S
 
     r = S._fig9_runs()
     for side in ("LHS", "RHS"):
