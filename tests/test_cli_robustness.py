@@ -17,6 +17,7 @@ import mpmath
 import pytest
 
 import verify.cli as cli
+from verify.cli import arguments, commands, output, progress
 from verify.cli import main
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -65,13 +66,14 @@ def test_what_cpp_prints_to_stdout_during_a_run_goes_to_stderr():
     script = (
         "import ctypes, os, sys\n"
         "import verify.cli as cli\n"
-        "real = cli.solve\n"
+        "import verify.cli.commands as commands\n"
+        "real = commands.solve\n"
         "def noisy(*a, **k):\n"
         "    os.write(1, b'fd-noise\\n')\n"
         "    ctypes.CDLL(None).printf(b'c-noise\\n')\n"
         "    print('python-noise')\n"
         "    return real(*a, **k)\n"
-        "cli.solve = noisy\n"
+        "commands.solve = noisy\n"
         "sys.exit(cli.main(['trajectory', 'disk', '--state', 'theta=1e-300', '--t-end', '1', '--format', 'json']))\n"
     )
     p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=120)
@@ -94,7 +96,7 @@ def test_json_mode_failures_still_print_one_json_document(capsys, argv):
 
 
 def test_nan_in_a_record_is_null_not_invalid_json():
-    text = cli._dumps({"a": float("nan"), "b": [float("inf"), 1.5], "c": {"d": float("-inf")}})
+    text = output._dumps({"a": float("nan"), "b": [float("inf"), 1.5], "c": {"d": float("-inf")}})
     assert json.loads(text) == {"a": None, "b": [None, 1.5], "c": {"d": None}}
 
 
@@ -109,7 +111,7 @@ def test_mpfr_below_53_bits_is_refused(capsys, bits):
 
 
 def test_mpfr_at_the_floor_and_junk_precisions(capsys):
-    assert cli._precision("mp:53").bits == 53
+    assert arguments._precision("mp:53").bits == 53
     for bad in ("mp:abc", "mp:", "octuple", "", "mp:99999999999999999999999"):
         code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1", "--precision", bad)
         assert code == 2 and "allowed: double, long, quad or mp:BITS" in one_error_line(err)
@@ -258,7 +260,7 @@ def test_ctrl_c_in_process(capsys, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(cli, "solve", interrupted)
+    monkeypatch.setattr(commands, "solve", interrupted)
     code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1")
     assert code == 130 and out == "" and one_error_line(err) == "error: interrupted (Ctrl-C)"
     code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1", "--format", "json")
@@ -336,7 +338,7 @@ def test_an_unexpected_error_is_one_line_and_debug_shows_the_traceback(capsys, m
     def broken(*args, **kwargs):
         return 1 / 0
 
-    monkeypatch.setattr(cli, "solve", broken)
+    monkeypatch.setattr(commands, "solve", broken)
     code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1")
     line = one_error_line(err)
     assert code == 1 and out == "" and "ZeroDivisionError" in line and "--debug" in line
@@ -378,7 +380,7 @@ def _until_reported(stream, text, seconds):
 
 
 def _slow_solve(seconds):
-    real = cli.solve
+    real = commands.solve
 
     def solve(model, t_end, state=None, params=None, *, progress=None, **kwargs):
         if progress is not None:
@@ -393,8 +395,8 @@ def _slow_solve(seconds):
 def test_progress_through_solves_hook(capsys, monkeypatch):
     """With solve(progress=callable(t, steps)) the CLI shows t, steps and the rate on stderr; with
     --format json only under --progress."""
-    monkeypatch.setattr(cli, "PROGRESS_INTERVAL", 0.05)
-    monkeypatch.setattr(cli, "solve", _slow_solve(60))
+    monkeypatch.setattr(progress, "PROGRESS_INTERVAL", 0.05)
+    monkeypatch.setattr(commands, "solve", _slow_solve(60))
     argv = ["trajectory", "disk", "--state", "theta=1.2", "--state", "psidot=10", "--t-end", "1"]
     code, out, err = run(capsys, *argv)
     assert code == 0 and "outcome     ok" in out
@@ -411,7 +413,7 @@ def test_progress_before_the_first_step_says_the_equations_compile():
     import io
 
     stream = io.StringIO()
-    bar = cli._Progress(stream, "trajectory disk", "1e6", True, interval=0.05)
+    bar = progress._Progress(stream, "trajectory disk", "1e6", True, interval=0.05)
     with bar:
         _until_reported(stream, "setting up", 60)
     assert "trajectory disk: setting up (compiling the equations), t_end = 1e6 s" in stream.getvalue()

@@ -1,4 +1,4 @@
-"""``python -m verify``: the command line (verify/cli.py), quiet on Ctrl-C even while importing."""
+"""``python -m verify``: the command line (verify/cli/), quiet on Ctrl-C even while importing."""
 import sys
 
 if __name__ == "__main__":

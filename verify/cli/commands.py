@@ -1,0 +1,231 @@
+"""The commands: ``trajectory``, ``models``, ``threshold``, ``spindown``, ``reference``, ``sweep``, ``report``, ``bench``; each
+reads its arguments, runs, and hands its output to the session."""
+from __future__ import annotations
+
+import sys
+import time
+
+from models import ALL_NAMES, get_model, sources
+
+from ..engine.single import IntegrationError, solve
+from ..guard import Session
+from .arguments import (_DECIMAL, N_EVAL_MAX, RunFailed, UsageError, _decimal, _numeric_pairs, _positive,
+                        _positive_int, _precision, _shown)
+from .output import _dumps, _not_ok, _text, trajectory_record
+from .progress import _Progress
+
+
+def cmd_trajectory(args, session: Session) -> int:
+    precision = _precision(args.precision)
+    if args.model not in ALL_NAMES:
+        raise UsageError(f"unknown model {args.model!r}; allowed: {', '.join(ALL_NAMES)}")
+    if args.equations not in sources(args.model):
+        raise UsageError(f"--equations {_shown(args.equations)} for model {args.model!r}; allowed: {', '.join(sources(args.model))}")
+    state, params = _numeric_pairs(args.state, "state"), _numeric_pairs(args.param, "param")
+    t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
+    tol = None if args.tol is None else _positive(args.tol, "--tol", "1e-15 (the Taylor tolerance; default: the precision's epsilon)")
+    n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)  # at least the start and t_end
+    model = get_model(args.model, args.equations)
+    show = args.progress if args.progress is not None else args.format == "text"
+    bar = _Progress(sys.stderr, f"trajectory {args.model}", t_end, show)
+    with bar:
+        try:
+            sol = solve(model, t_end, state, params, precision=precision, tol=tol, n_eval=n_eval,
+                        high_accuracy=args.high_accuracy, progress=bar.update)
+        except ValueError as err:
+            raise UsageError(str(err)) from None
+        except IntegrationError as err:  # the run up to its failure, if the integrator kept it, then exit 1
+            if err.trajectory is not None:
+                record = trajectory_record(err.trajectory)
+                record["outcome"] = err.outcome
+                session.emit(_dumps(record) if args.format == "json" else _text(record))
+            raise RunFailed(str(err)) from None
+    record = trajectory_record(sol)
+    failure = _not_ok(sol, model)
+    if failure is not None and record["outcome"] in ("ok",):
+        # the integrator's own names for these (verify.engine.single.FAILURES)
+        record["outcome"] = "failed:event_detection" if "domain" in failure else "failed:non_finite"
+    session.emit(_dumps(record) if args.format == "json" else _text(record))
+    if failure is not None:
+        raise RunFailed(failure)
+    return 0
+
+
+# --- the other commands -------------------------------------------------------------------------
+
+def cmd_models(args, session: Session) -> int:
+    records = []
+    for name in ALL_NAMES:
+        m = get_model(name)
+        records.append({
+            "model": name,
+            "title": m.title,
+            "equations": list(sources(name)),
+            "parameters": {p.name: {"default": str(p.default), "range": p.allowed(), "description": p.description}
+                           for p in m.parameters},
+            "domain": f"{m.domain.theta_min} < theta < {m.domain.theta_max}",
+            "invariants": list(m.invariant_names()),
+            "energy_unit": m.units,
+        })
+    if args.format == "json":
+        session.emit(_dumps(records))
+        return 0
+    lines = []
+    for r in records:
+        lines.append(f"{r['model']}: {r['title']} (equations: {', '.join(r['equations'])})")
+        for pname, p in r["parameters"].items():
+            lines.append(f"    {pname:<3} default {p['default']:<28} range {p['range']:<12} {p['description']}")
+        lines.append(f"    domain {r['domain']}; invariants: {', '.join(r['invariants'])}; energy per {r['energy_unit']}")
+    session.emit("\n".join(lines))
+    return 0
+
+
+def cmd_threshold(args, session: Session) -> int:
+    from ..studies.thresholds import bracket, threshold, to_record
+
+    params = _numeric_pairs(args.param, "param")
+    nonlinear = None
+    try:
+        if args.nonlinear_tilt is not None:
+            tilt = str(args.nonlinear_tilt).strip()
+            if not _DECIMAL.fullmatch(tilt) or not tilt.isascii():
+                raise UsageError(f"--nonlinear-tilt {args.nonlinear_tilt!r} is not a number; allowed: (0, 0.1), e.g. 1e-6")
+            if not 0 < float(tilt) < 0.1:
+                raise UsageError(f"--nonlinear-tilt {tilt} must lie in (0, 0.1); allowed: e.g. 1e-6")
+        result = threshold(args.model, args.motion, params)
+        if args.nonlinear_tilt is not None:
+            nonlinear = (tilt, bracket(args.model, args.motion, tilt, params))
+        rec = to_record(result, nonlinear)
+    except ValueError as err:
+        if str(err).startswith("Could not find root"):
+            # mpmath.findroot's ValueError: the study failed for these parameters, the input is
+            # well formed (exit 1, as a study that finds no root; thresholds.py raises ValueError
+            # for bad input only)
+            raise RunFailed(f"threshold {args.model} {args.motion}: the study found no root for these parameters "
+                            f"(mpmath: {' '.join(str(err).split())})") from None
+        raise UsageError(str(err)) from None
+    if args.format == "json":
+        session.emit(_dumps(rec))
+        return 0
+    value = rec["threshold"]["value"]
+    lines = [f"{rec['model']} {rec['motion']}: {rec['threshold']['name']} = {value if value else 'none'}"
+             f"{'  (' + rec['closed_form'] + ')' if rec['closed_form'] else ''}", f"  {rec['method']}"]
+    if args.nonlinear_tilt is not None:
+        b = rec.get("bracket")
+        if b is None:
+            lines.append(f"nonlinear bracket at tilt {tilt}: none (no linear threshold to bracket)")
+        else:
+            lines.append(f"nonlinear bracket at tilt {b['tilt']}: {rec['threshold']['name']} in [{b['low']}, {b['high']}]")
+            lines.append(f"  {b['method']}")
+    session.emit("\n".join(lines))
+    return 0
+
+
+def cmd_spindown(args, session: Session) -> int:
+    from ..studies.spindown import spindown, to_record
+
+    params = _numeric_pairs(args.param, "param")
+    theta = _decimal(args.theta, f"--theta {_shown(args.theta)}")
+    try:
+        rec = to_record(spindown(args.model, theta, args.family, params))
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    session.emit(_dumps(rec) if args.format == "json" else "\n".join(f"{k:<15} {v}" for k, v in rec.items()))
+    return 0
+
+
+def cmd_reference(args, session: Session) -> int:
+    from pathlib import Path
+
+    from .. import reference
+
+    directory = Path(args.dir) if args.dir else reference.DIRECTORY
+    say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
+    try:
+        if args.make:
+            if args.precision is not None:
+                raise UsageError("--precision is for --check; --make always runs mp:128 and mp:256")
+            jobs = _positive_int(args.jobs, "--jobs")
+            t0 = time.monotonic()
+            session.interrupt_note = f"cases already written to {directory} are kept"
+            records = reference.make_set(args.case, jobs=jobs, directory=directory, progress=say)
+            say(f"wrote {len(records)} case(s) to {directory} in {time.monotonic() - t0:.0f} s")
+            return 0
+        checks = reference.check_set(args.precision or "double", args.case, directory, progress=say)
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    session.emit(_dumps([c.to_record() for c in checks]) if args.format == "json" else reference.render_checks(checks))
+    failed = [c.case for c in checks if not c.ok]
+    if failed:
+        raise RunFailed(f"{len(failed)} case(s) out of bound: {', '.join(failed)}")
+    return 0
+
+
+def cmd_sweep(args, session: Session) -> int:
+    from pathlib import Path
+
+    from .. import sweep
+    from ..provenance import write_atomic
+
+    try:
+        spec = sweep.load(args.spec, store=args.store)
+        threads = _positive_int(args.threads, "--threads") if args.threads is not None else None
+        if args.plot:
+            if args.dask is not None:
+                raise UsageError("--plot draws from the store; it does not run anything (drop --dask)")
+            if not Path(spec.store).exists():
+                raise UsageError(f"no store {spec.store} yet: run 'python -m verify sweep {args.spec}' first")
+            from ..sweep.plot import render
+
+            with sweep.Store(spec) as store:
+                rows = store.rows()
+            if not rows:
+                raise UsageError(f"the store {spec.store} holds no rows yet")
+            out = Path(args.out) if args.out else Path(spec.store).with_suffix(".png")
+            if out.is_dir():
+                raise UsageError(f"--out {args.out} is a folder; allowed: a file name for the PNG, such as "
+                                 f"{out / Path(spec.store).with_suffix('.png').name}")
+            _output_folder(str(out.parent))
+            write_atomic(out, render(spec, rows))
+            session.emit(f"wrote {out} ({len(rows)} of {spec.n_points} trajectories)")
+            return 0
+        session.interrupt_note = (f"the store {args.store or spec.store} keeps the finished chunks; "
+                                  "rerun the same command to resume")
+        result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet, yes=args.yes)
+    except (sweep.SpecError, sweep.StoreError, sweep.ClusterError) as err:
+        raise UsageError(str(err)) from None
+    session.emit(f"{spec.name}: {result.rows} of {spec.n_points} trajectories in {result.store} "
+                 f"({result.chunks_run} chunks run, {result.chunks_skipped} already there; {result.where}; "
+                 f"{result.seconds:.1f} s)")
+    return 0
+
+
+def _output_folder(folder: str) -> str:
+    from ..provenance import writable_folder
+
+    try:
+        writable_folder(folder)
+    except ValueError as err:
+        raise UsageError(f"--out: {err}") from None
+    return folder
+
+
+def cmd_report(args, session: Session) -> int:
+    from ..report import write_report
+
+    write_report(_output_folder(args.out), bench=not args.no_bench)
+    return 0
+
+
+def cmd_bench(args, session: Session) -> int:
+    from ..bench import run_benchmarks, write_benchmarks
+
+    try:
+        import scipy  # noqa: F401
+    except ImportError:
+        raise UsageError("the benchmark compares with scipy: pip install scipy (or the project's [bench] extra)") from None
+    out = _output_folder(args.out)
+    t0 = time.monotonic()
+    write_benchmarks(run_benchmarks(quick=args.quick, progress=lambda s: print(s, file=sys.stderr, flush=True)), out)
+    session.emit(f"wrote {out}/BENCHMARKS.md, benchmarks.json and figures/bench-*.png ({time.monotonic() - t0:.0f} s)")
+    return 0

@@ -1,0 +1,155 @@
+"""The argument parser: the commands and their options; ``--opt -VALUE`` and ``--debug`` anywhere on the line."""
+from __future__ import annotations
+
+import argparse
+
+from models import ALL_NAMES
+from models.symbols import STATE_NAMES
+
+from .arguments import MP_MIN_BITS, N_EVAL_MAX, UsageError
+from .commands import (cmd_bench, cmd_models, cmd_reference, cmd_report, cmd_spindown, cmd_sweep, cmd_threshold,
+                       cmd_trajectory)
+
+#: --help's first line
+DESCRIPTION = "Command line: ``python -m verify {trajectory,models,threshold,spindown,reference,sweep,report,bench} ...``."
+
+# --- the parser -------------------------------------------------------------------------------
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, with its errors as one line (UsageError) instead of a usage block and exit."""
+
+    def error(self, message):
+        raise UsageError(f"{message} (see '{self.prog} --help')")
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = _Parser(prog="python -m verify", description=DESCRIPTION)
+    ap.add_argument("--debug", action="store_true",
+                    help="show the Python traceback of an unexpected error (may be given anywhere on the line)")
+    sub = ap.add_subparsers(dest="command", required=True)
+
+    t = sub.add_parser("trajectory", help="integrate one model from one state")
+    t.add_argument("model", help=f"one of: {', '.join(ALL_NAMES)}")
+    t.add_argument("--equations", default="derived", help="derived (default) or paper")
+    t.add_argument("--param", action="append", metavar="NAME=VALUE", help="a parameter (repeatable)")
+    t.add_argument("--state", action="append", metavar="NAME=VALUE",
+                   help=f"an initial value, unset ones are 0 (names: {', '.join(STATE_NAMES)})")
+    t.add_argument("--t-end", required=True, help="final time in seconds")
+    t.add_argument("--precision", default="double",
+                   help=f"double (default), long, quad or mp:BITS (MPFR, BITS >= {MP_MIN_BITS})")
+    t.add_argument("--tol", default=None, help="Taylor tolerance (default: the precision's epsilon)")
+    t.add_argument("--n-eval", default="101", help=f"output points from 0 to t_end (default 101; 2 to {N_EVAL_MAX})")
+    t.add_argument("--high-accuracy", action="store_true",
+                   help="heyoka's compensated summation: energy error ~ t^0.5 over 1e6 steps (python -m verify bench)")
+    t.add_argument("--format", choices=("json", "text"), default="text")
+    t.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress on stderr once a second after the first two (default: on with --format text, off with json)")
+    t.set_defaults(run=cmd_trajectory)
+
+    m = sub.add_parser("models", help="list the models, their parameters and invariants")
+    m.add_argument("--format", choices=("json", "text"), default="text")
+    m.set_defaults(run=cmd_models)
+
+    th = sub.add_parser("threshold", help="linear stability threshold of a steady motion")
+    th.add_argument("model")
+    th.add_argument("motion", help="diameter-spin, straight-line, precession or sleeping (as the model has them)")
+    th.add_argument("--param", action="append", metavar="NAME=VALUE")
+    th.add_argument("--nonlinear-tilt", default=None, metavar="TILT",
+                    help="also bracket the threshold by bisection on the full equations with this tilt (e.g. 1e-6)")
+    th.add_argument("--format", choices=("json", "text"), default="text")
+    th.set_defaults(run=cmd_threshold)
+
+    sd = sub.add_parser("spindown", help="exact steady spin-down state at a tilt, against Eq. 45 / Eq. 61")
+    sd.add_argument("model", help="disk or ring")
+    sd.add_argument("--theta", required=True)
+    sd.add_argument("--family", default="cm-at-rest", help="cm-at-rest (default) or zero-vertical-spin")
+    sd.add_argument("--param", action="append", metavar="NAME=VALUE")
+    sd.add_argument("--format", choices=("json", "text"), default="text")
+    sd.set_defaults(run=cmd_spindown)
+
+    ref = sub.add_parser("reference", help="make or check the reference trajectories (reports/reference/)")
+    job = ref.add_mutually_exclusive_group(required=True)
+    job.add_argument("--make", action="store_true", help="compute the set at mp:128 and mp:256 (tens of minutes)")
+    job.add_argument("--check", action="store_true", help="re-integrate every case and compare with the certified digits")
+    ref.add_argument("--precision", default=None, help="for --check: double (default), long or quad")
+    ref.add_argument("--case", action="append", metavar="NAME", help="only this case (repeatable)")
+    ref.add_argument("--jobs", default="2", help="for --make: processes (default 2)")
+    ref.add_argument("--dir", default=None, help="the set's folder (default: reports/reference)")
+    ref.add_argument("--format", choices=("json", "text"), default="text")
+    ref.set_defaults(run=cmd_reference)
+
+    sw = sub.add_parser("sweep", help="run (or resume) a parameter sweep described by a TOML file")
+    sw.add_argument("spec", help="the sweep's TOML file (e.g. verify/sweep/specs/disk-diameter-spin.toml)")
+    sw.add_argument("--dask", default=None, metavar="ADDRESS",
+                    help="run the chunks on a Dask cluster (tcp://host:port, or 'local' for one on this machine)")
+    sw.add_argument("--plot", action="store_true", help="draw the map(s) from the store instead of running")
+    sw.add_argument("--store", default=None, help="the store file (default: the spec's)")
+    sw.add_argument("--out", default=None, help="with --plot: the PNG (default: the store's name with .png)")
+    sw.add_argument("--threads", default=None, help="threads on this machine (default: every core)")
+    sw.add_argument("--quiet", action="store_true", help="no progress bar")
+    sw.add_argument("--yes", action="store_true",
+                    help="run a sweep beyond the size limits (points, memory, disk, time) that it otherwise refuses")
+    sw.set_defaults(run=cmd_sweep)
+
+    r = sub.add_parser("report", help="run the verification and write reports/")
+    r.add_argument("--out", default="reports", help="output folder (default: reports)")
+    r.add_argument("--no-bench", action="store_true", help="skip the benchmarks (BENCHMARKS.md is left as it is)")
+    r.set_defaults(run=cmd_report)
+
+    b = sub.add_parser("bench", help="benchmarks: solve, sweeps and maps against bare heyoka, energy error, work against "
+                                     "precision, JIT cost")
+    b.add_argument("--out", default="reports", help="output folder (default: reports)")
+    b.add_argument("--quick", action="store_true", help="small sizes (for trying the command; not for the report)")
+    b.set_defaults(run=cmd_bench)
+    return ap
+
+
+def _options(ap: argparse.ArgumentParser):
+    """(every option string, those that take a value) over the parser and its subparsers."""
+    known, valued = set(), set()
+    stack = [ap]
+    while stack:
+        p = stack.pop()
+        for action in p._actions:  # argparse keeps no public list of a parser's actions
+            if isinstance(action, argparse._SubParsersAction):
+                stack.extend(action.choices.values())
+                continue
+            known.update(action.option_strings)
+            if action.option_strings and action.nargs is None:
+                valued.update(action.option_strings)
+    return known, valued
+
+
+def _prepare(argv: list, ap: argparse.ArgumentParser) -> tuple:
+    """(argv without --debug, debug): ``--opt VALUE`` becomes ``--opt=VALUE`` where VALUE starts
+    with '-' and is not itself an option (``--tol -1e-15``: argparse would take -1e-15 for an
+    option and report "expected one argument"); ``--debug`` is taken out wherever it stands."""
+    known, valued = _options(ap)
+
+    def is_option(tok: str) -> bool:
+        head = tok.split("=", 1)[0]
+        return head in known or (head.startswith("--") and len(head) > 2 and any(k.startswith(head) for k in known))
+
+    out, debug, i = [], False, 0
+    while i < len(argv):
+        tok = argv[i]
+        if tok == "--":
+            out.extend(argv[i:])
+            break
+        if tok == "--debug":
+            debug = True
+        elif (tok in valued and i + 1 < len(argv) and argv[i + 1].startswith("-") and argv[i + 1] not in ("-", "--")
+              and not is_option(argv[i + 1])):
+            out.append(f"{tok}={argv[i + 1]}")
+            i += 1
+        else:
+            out.append(tok)
+        i += 1
+    return out, debug
+
+
+def _wants_json(argv: list) -> bool:
+    for i, tok in enumerate(argv):
+        if tok == "--format=json" or (tok == "--format" and i + 1 < len(argv) and argv[i + 1] == "json"):
+            return True
+    return False
