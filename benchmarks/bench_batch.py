@@ -95,7 +95,8 @@ def sweep_case(spec, chunks, bs):
     compiled = compile_model(model, prec)
     idx = np.concatenate([np.arange(c * spec.chunk, min((c + 1) * spec.chunk, spec.n_points)) for c in chunks])
     states, model_pars, _ = lane_inputs(spec, idx)
-    pars = np.stack([compiled.system_pars(model_pars[:, k]) for k in range(len(idx))], axis=1)
+    pars = np.stack([compiled.parameter_vector(dict(zip(model.parameter_names, model_pars[:, k])))
+                     for k in range(len(idx))], axis=1)
 
     def engine():
         start = time.perf_counter()

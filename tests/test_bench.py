@@ -10,7 +10,8 @@ import pytest
 
 from verify.bench import (Attempt, TARGETS, bare_ensemble, bench_sweep_spec, interleaved, map_starts, ratio_record,
                           render_markdown, run_benchmarks, same_accuracy_speedup, solve_against_bare, sweep_starts,
-                          write_benchmarks, _md_ensembles, _md_solve)
+                          write_benchmarks)
+from verify.bench.markdown import _md_ensembles, _md_solve
 
 
 def _a(method, setting, seconds, error):

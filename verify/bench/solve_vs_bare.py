@@ -1,0 +1,91 @@
+"""``verify.solve`` against bare heyoka ``propagate_until`` on the same compiled equations (BENCHMARKS.md's first table)."""
+from __future__ import annotations
+
+import heyoka as hy
+import numpy as np
+
+from models import get_model
+
+from ..engine.compile import compile_model
+from .sizes import TARGETS, _g
+from .timing import interleaved, ratio_record
+
+
+def _bare_single(compiled, y0, parr, kw, events: bool):
+    """A bare integrator built once (construction outside every timing) and a run that resets it
+    and propagates it to t_end: (outcome, steps, final state)."""
+    ta = hy.taylor_adaptive(list(compiled.system), y0, pars=parr,
+                            t_events=compiled.t_events() if events else [], **kw)
+    zero = ta.time
+
+    def run(t_end):
+        ta.time = zero
+        ta.state[:] = y0
+        if events:
+            ta.reset_cooldowns()
+        res = ta.propagate_until(t_end)
+        return res[0], int(res[3]), np.array(ta.state)
+
+    return run
+
+
+def solve_against_bare(model_name: str = "disk", t_ends=("1", "10", "100"), precision: str = "double",
+                       repeats: int = 7, invariants: bool = True, progress=None) -> list:
+    """``verify.solve`` (default settings) against bare heyoka on the same compiled equations.
+
+    For each t_end, from the model's standard state (:data:`verify.standard.STANDARD_STATES`),
+    interleaved rounds of: ``solve(...)``; ``solve(...)`` with every invariant's values read
+    (default output grid); bare ``taylor_adaptive.propagate_until`` on
+    ``compile_model(model, precision).system`` without events, and with the terminal events
+    solve compiles (``compile_model(...).t_events()``: the domain's ends, loss of contact).  The
+    bare integrators are built once and reset before each run (solve builds its own inside its
+    timing); same start, same parameters, tolerance epsilon for both, no step cap for the bare
+    runs (solve's cap of one radian of the fastest rate does not bind on the standard states:
+    compare the steps).  The start and parameters are read back from a first ``solve`` run.
+    """
+    from .. import solve
+    from ..standard import STANDARD_STATES
+
+    state = STANDARD_STATES[model_name]
+    first = solve(model_name, t_ends[0], state, precision=precision)  # JIT and sympy caches warm
+    prec, model = first.precision, get_model(model_name)
+    compiled = compile_model(model, prec)
+    y0 = np.array(first.y[:, 0])
+    parr = compiled.parameter_vector(first.params)
+    kw = prec.integrator_kwargs()
+    bare, bare_events = _bare_single(compiled, y0, parr, kw, False), _bare_single(compiled, y0, parr, kw, True)
+    rows = []
+    for t_end in t_ends:
+        if progress:
+            progress(f"  solve against bare heyoka: {model_name}, {precision}, t_end {t_end} s, {repeats} rounds")
+        T = prec.number(t_end)
+        runs = {"solve": lambda: solve(model_name, t_end, state, precision=precision),
+                "bare propagate_until": lambda: bare(T),
+                "bare propagate_until + events": lambda: bare_events(T)}
+        if invariants:
+            runs["solve, invariants read"] = lambda: _read_invariants(solve(model_name, t_end, state, precision=precision))
+        times, last = interleaved(runs, repeats)
+        sol = last["solve"]
+        outcome_bare, steps_bare, final_bare = last["bare propagate_until"]
+        outcome_events = last["bare propagate_until + events"][0]
+        case = {"model": model_name, "precision": prec.name, "t_end": t_end, "state": dict(state), "rounds": repeats,
+                "steps_solve": int(sol.steps), "steps_bare": steps_bare, "outcome_solve": sol.outcome,
+                "outcome_bare": str(outcome_bare), "outcome_bare_events": str(outcome_events),
+                "final_state_difference": _g(float(np.max(np.abs(np.array(sol.y[:, -1], dtype=float)
+                                                               - np.array(final_bare, dtype=float))))),
+                "n_output_points": int(len(sol.t)), "seconds": {k: [_g(v) for v in vs] for k, vs in times.items()},
+                "ratios": [ratio_record(times, "bare propagate_until + events", "bare propagate_until"),
+                           ratio_record(times, "solve", "bare propagate_until"),
+                           ratio_record(times, "solve", "bare propagate_until + events",
+                                        TARGETS["solve_quad" if prec.name == "quad" else "solve"])]}
+        if invariants:
+            case["ratios"] += [ratio_record(times, "solve, invariants read", "bare propagate_until"),
+                               ratio_record(times, "solve, invariants read", "bare propagate_until + events",
+                                            TARGETS["solve_invariants"])]
+        rows.append(case)
+    return rows
+
+
+def _read_invariants(sol):
+    """Every invariant's values (read, so a lazy evaluation is paid inside the timing)."""
+    return {name: np.asarray(trace.values) for name, trace in sol.invariants.items()}
