@@ -1,4 +1,4 @@
-"""The dissipative disk (models/dissipative.py) and the spin-down study (verify/studies/dissipation.py).
+"""The dissipative disk (models/dissipative.py) and the spin-down study (verify/studies/dissipation/).
 
 Routes, each independent of what it checks:
 
