@@ -210,7 +210,7 @@ def _check_fig5_rhs():
 
 
 def _check_fig6():
-    from .disk import _fig6_rates
+    from ..disk import _fig6_rates
 
     out = []
     for family, label in (("no-vertical-spin", "no z rotation"), ("cm-at-rest", "v_CM = 0")):
