@@ -12,6 +12,7 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE_NAMES, theta, thetadot, x
 from verify import IntegrationError, solve
+from verify.engine import segments
 from verify.engine import single as integrate
 from verify.engine.heyoka_log import collect
 from verify.precision import MIN_MPFR_BITS, parse_precision
@@ -179,7 +180,7 @@ def test_a_grid_that_rounds_to_repeated_times_is_refused():
 
 def test_progress_is_called_with_time_and_steps_and_changes_nothing(monkeypatch):
     quiet = solve("disk", "3", STANDARD_STATES["disk"], n_eval=4)
-    monkeypatch.setattr(integrate, "PROGRESS_SECONDS", 0.0)  # every opportunity, so the test does not time
+    monkeypatch.setattr(segments, "PROGRESS_SECONDS", 0.0)  # every opportunity, so the test does not time
     calls = []
     sol = solve("disk", "3", STANDARD_STATES["disk"], n_eval=4, progress=lambda t, steps: calls.append((t, steps)))
     assert np.array_equal(sol.y, quiet.y) and sol.steps == quiet.steps  # bit for bit
@@ -195,7 +196,7 @@ def test_progress_can_stop_a_run(monkeypatch):
     def hook(t, steps):
         raise Stop(t)
 
-    monkeypatch.setattr(integrate, "PROGRESS_SECONDS", 0.0)
+    monkeypatch.setattr(segments, "PROGRESS_SECONDS", 0.0)
     with pytest.raises(Stop):
         solve("disk", "3", STANDARD_STATES["disk"], progress=hook)
     with pytest.raises(ValueError, match="progress=3 is not callable"):

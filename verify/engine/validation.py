@@ -113,8 +113,13 @@ def state(model: Model, values, precision: Precision) -> np.ndarray:
     else:
         values = _sequence(values)
     out = []
+    zero = None
     for name in STATE_NAMES:
-        raw = values.get(name, 0)
+        if name not in values:  # unset: 0, read once
+            zero = precision.zero() if zero is None else zero
+            out.append(zero)
+            continue
+        raw = values[name]
         try:
             out.append(precision.number(raw))
         except (ValueError, TypeError) as err:
@@ -163,7 +168,7 @@ def start_problems(model: Model, states, normal=None, shown=None):
     as_float = np.array([[float(v) for v in row] for row in states]) if states.dtype == object else \
         states.astype(float)
     dom = model.domain
-    lo, hi = float(dom.theta_min), float(dom.theta_max)
+    lo, hi = domain_ends(dom)
     problems, seen = [], set()
 
     def add(cols, reason, message):
@@ -191,16 +196,28 @@ def start_problems(model: Model, states, normal=None, shown=None):
         add(np.flatnonzero(values != 0), "constraint",
             lambda j: f"state violates the constraint {name} = 0 ({text}); it is {float(values[j]):g}")
     if normal is not None:
-        nf = np.array([float(v) for v in np.asarray(normal).ravel()])
-        with np.errstate(invalid="ignore"):
-            low = ~((nf > 0) & np.isfinite(nf))
-        add(np.flatnonzero(low), "normal_force",
-            lambda j: (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]:.6g} <= 0: the body "
-                       "would leave the plane; allowed: states with N > 0") if math.isfinite(nf[j]) else
-                      (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]}: its rates overflow "
-                       "the precision; allowed: states with a finite N > 0"))
+        for j, reason, message in _normal_force_problems(model, normal):
+            add([j], reason, lambda _, message=message: message)
     problems.sort()
     return problems
+
+
+def _normal_force_problems(model: Model, normal) -> list:
+    """(column, "normal_force", message) of each start whose normal force N/(Mg) is not a finite N > 0."""
+    nf = np.array([float(v) for v in np.asarray(normal).ravel()])
+    with np.errstate(invalid="ignore"):
+        low = ~((nf > 0) & np.isfinite(nf))
+    return [(int(j), "normal_force",
+             (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]:.6g} <= 0: the body "
+              "would leave the plane; allowed: states with N > 0") if math.isfinite(nf[j]) else
+             (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]}: its rates overflow "
+              "the precision; allowed: states with a finite N > 0")) for j in np.flatnonzero(low)]
+
+
+@lru_cache(maxsize=None)
+def domain_ends(dom) -> tuple:
+    """(theta_min, theta_max) of a model's domain as doubles (sympy's evaluation, once per domain)."""
+    return float(dom.theta_min), float(dom.theta_max)
 
 
 def _domain_end(end, like):
@@ -218,8 +235,9 @@ def _inside_domain(dom, thetas, as_float) -> np.ndarray:
     """theta_min < theta < theta_max for each start, compared at the start's own precision (in double a
     quad theta of 1e-400 would be 0, and one between float(pi) and pi would sit on the end)."""
     if thetas.dtype == np.float64:
+        lo, hi = domain_ends(dom)
         with np.errstate(invalid="ignore"):
-            return (float(dom.theta_min) < as_float) & (as_float < float(dom.theta_max))
+            return (lo < as_float) & (as_float < hi)
     out = np.zeros(len(thetas), bool)
     for j, th in enumerate(thetas):
         if math.isnan(float(th)):
@@ -313,8 +331,9 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
             raise InvalidStart(f"the initial state of {model.name!r} has {overflow[0]} = {overflow[1]}: its values "
                                f"overflow {precision.name}; allowed: states whose invariants are finite (smaller "
                                "rates, or mp:BITS)", "non_finite")
-        if model.normal_force is not None:
-            problem = first_problem(model, y0[:, None], normal_force(compiled, y0[:, None].copy(), pars), shown)
+        if model.normal_force is not None:  # the rest was checked above: the normal force alone is left
+            low = _normal_force_problems(model, normal_force(compiled, y0[:, None].copy(), pars))
+            problem = low[0] if low else None
     if problem is not None:
         raise InvalidStart(problem[2], problem[1])
     return y0, pars
