@@ -70,7 +70,7 @@ def parameters(model: Model, values, precision: Precision) -> dict:
     for p in model.parameters:
         raw = values.get(p.name, p.default)
         try:
-            val = precision.number(raw)
+            val = _default(precision, raw) if p.name not in values else precision.number(raw)
         except (ValueError, TypeError) as err:
             reason = "non_finite" if "finite" in str(err) else "not_a_number"
             raise InvalidStart(f"parameter {p.name}={raw!r}: {err}", reason) from None
@@ -84,6 +84,12 @@ def parameters(model: Model, values, precision: Precision) -> dict:
     except ValueError as err:
         raise InvalidStart(str(err), "parameter_relation") from None
     return out
+
+
+@lru_cache(maxsize=None)
+def _default(precision: Precision, value):
+    """A parameter's default (an exact sympy number) at ``precision``, rounded once per precision."""
+    return precision.number(value)
 
 
 def check_parameter_value(model: Model, name: str, value, shown=None) -> None:
@@ -295,13 +301,13 @@ def normal_force(compiled, y: np.ndarray, pars: dict):
     return _invariant_rows(compiled, y, pars)[compiled.n_invariants]
 
 
-def _overflowing_invariant(model: Model, compiled, y0: np.ndarray, pars: dict):
+def _overflowing_invariant(model: Model, rows: np.ndarray):
     """The first invariant (energy, ...) that is not finite at the start, as (name, value), or None.
 
-    Finite state values can still overflow the precision in the invariants (psidot = 1e200 in
-    double: I3 psidot^2 / 2 = inf); heyoka would then fail at its first step.
+    ``rows``: the compiled invariant function at the start (one column).  Finite state values can
+    still overflow the precision in the invariants (psidot = 1e200 in double: I3 psidot^2 / 2 = inf);
+    heyoka would then fail at its first step.
     """
-    rows = _invariant_rows(compiled, y0[:, None].copy(), pars)
     for inv, row in zip(model.invariants, rows):
         v = row[0]
         with np.errstate(invalid="ignore"):  # inf - inf
@@ -326,13 +332,14 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
             from .compile import compile_model
 
             compiled = compile_model(model, precision)
-        overflow = _overflowing_invariant(model, compiled, y0, pars)
+        rows = _invariant_rows(compiled, y0[:, None].copy(), pars)  # the invariants, then N/(Mg)
+        overflow = _overflowing_invariant(model, rows)
         if overflow is not None:
             raise InvalidStart(f"the initial state of {model.name!r} has {overflow[0]} = {overflow[1]}: its values "
                                f"overflow {precision.name}; allowed: states whose invariants are finite (smaller "
                                "rates, or mp:BITS)", "non_finite")
-        if model.normal_force is not None:  # the rest was checked above: the normal force alone is left
-            low = _normal_force_problems(model, normal_force(compiled, y0[:, None].copy(), pars))
+        if model.normal_force is not None and compiled.has_normal_force:  # the rest was checked above
+            low = _normal_force_problems(model, rows[compiled.n_invariants])
             problem = low[0] if low else None
     if problem is not None:
         raise InvalidStart(problem[2], problem[1])
