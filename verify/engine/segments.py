@@ -63,12 +63,16 @@ class Offsets:
         self.two_pi = two_pi(precision)
         turn = float(self.two_pi)
         self.limits = ((1, turn, True), (2, turn, True), (6, 1.0, False), (7, 1.0, False))
+        self.columns = list(_CYCLIC)
+        self.vector_limits = np.array([turn, turn, 1.0, 1.0]) if precision.name in ("double", "long") else None
         zero = precision.zero()
         self.value = {i: zero for i in _CYCLIC}
 
     def rebase(self, st) -> None:
         """Move whole turns of phi, psi and all of x, y from the state into the offsets."""
         turn = self.limits[0][1]
+        if self.vector_limits is not None and (np.abs(st[self.columns]) <= self.vector_limits).all():
+            return  # nothing to move (one array comparison where the dtype allows; NaN goes on as before)
         for i, limit, angle in self.limits:
             v = st[i]
             f = float(v)
@@ -213,8 +217,8 @@ def propagate_segments(ta, grid, t_end, h_max, prec: Precision, progress=None) -
         res = ta.propagate_grid(_segment_grid(prec, ta.time, inside, end), **kwargs)
         outcome, steps = res[0], steps + int(res[3])
         rows = res[-1][1:]
-        if len(rows):
-            kept = rows[: len(inside)]
+        kept = rows[: len(inside)]
+        if len(kept):
             out.add(inside[: len(kept)], offsets.restore_rows(kept))
         finished = len(rows) == len(inside) + 1  # (heyoka says step_limit when the budget ends on t_end)
         if outcome == _STEP_LIMIT and not finished:  # the step size collapsed
