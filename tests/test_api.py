@@ -219,6 +219,23 @@ def test_collected_output_keeps_other_lines_and_nests(capfd):
     assert len(outer) == 1 and outer[0].level == "warning" and outer[0].event_detection and outer[0].lane == 3
 
 
+def test_a_collection_does_not_see_the_lines_of_the_one_before(capfd):
+    """The file behind a collection is reused once emptied: the next one starts from nothing."""
+    import os
+
+    line = (b"[2026-01-01 00:00:00.000] [heyoka-7.13.0] [warning] polynomial root finding during event "
+            b"detection failed due to too many iterations\n")
+    with collect() as first:
+        os.write(1, line + b"the user's first line\n")
+    with collect() as second:
+        os.write(1, b"the user's second line\n")
+    with collect() as third:
+        os.write(1, line)
+    out, _ = capfd.readouterr()
+    assert len(first) == 1 and second == [] and len(third) == 1
+    assert out == "the user's first line\nthe user's second line\n"
+
+
 # --- the tolerance: from the precision's epsilon to 1 ----------------------------------------------
 
 @pytest.mark.parametrize("precision,tol", [("double", "1e-17"), ("double", "1e-400"), ("double", 1e-300),
