@@ -12,6 +12,7 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE_NAMES, theta, thetadot, x
 from verify import IntegrationError, solve
+from verify.engine import segments
 from verify.engine import single as integrate
 from verify.engine.heyoka_log import collect
 from verify.precision import MIN_MPFR_BITS, parse_precision
@@ -179,7 +180,7 @@ def test_a_grid_that_rounds_to_repeated_times_is_refused():
 
 def test_progress_is_called_with_time_and_steps_and_changes_nothing(monkeypatch):
     quiet = solve("disk", "3", STANDARD_STATES["disk"], n_eval=4)
-    monkeypatch.setattr(integrate, "PROGRESS_SECONDS", 0.0)  # every opportunity, so the test does not time
+    monkeypatch.setattr(segments, "PROGRESS_SECONDS", 0.0)  # every opportunity, so the test does not time
     calls = []
     sol = solve("disk", "3", STANDARD_STATES["disk"], n_eval=4, progress=lambda t, steps: calls.append((t, steps)))
     assert np.array_equal(sol.y, quiet.y) and sol.steps == quiet.steps  # bit for bit
@@ -195,7 +196,7 @@ def test_progress_can_stop_a_run(monkeypatch):
     def hook(t, steps):
         raise Stop(t)
 
-    monkeypatch.setattr(integrate, "PROGRESS_SECONDS", 0.0)
+    monkeypatch.setattr(segments, "PROGRESS_SECONDS", 0.0)
     with pytest.raises(Stop):
         solve("disk", "3", STANDARD_STATES["disk"], progress=hook)
     with pytest.raises(ValueError, match="progress=3 is not callable"):
@@ -216,6 +217,23 @@ def test_collected_output_keeps_other_lines_and_nests(capfd):
     out, _ = capfd.readouterr()
     assert out == "a line of the user's\n"
     assert len(outer) == 1 and outer[0].level == "warning" and outer[0].event_detection and outer[0].lane == 3
+
+
+def test_a_collection_does_not_see_the_lines_of_the_one_before(capfd):
+    """The file behind a collection is reused once emptied: the next one starts from nothing."""
+    import os
+
+    line = (b"[2026-01-01 00:00:00.000] [heyoka-7.13.0] [warning] polynomial root finding during event "
+            b"detection failed due to too many iterations\n")
+    with collect() as first:
+        os.write(1, line + b"the user's first line\n")
+    with collect() as second:
+        os.write(1, b"the user's second line\n")
+    with collect() as third:
+        os.write(1, line)
+    out, _ = capfd.readouterr()
+    assert len(first) == 1 and second == [] and len(third) == 1
+    assert out == "the user's first line\nthe user's second line\n"
 
 
 # --- the tolerance: from the precision's epsilon to 1 ----------------------------------------------

@@ -5,8 +5,11 @@
 * :mod:`.problem` -- a run's question (model, parameters, start, precision, tolerance, events)
   resolved and validated once;
 * :mod:`.integrators` -- integrators built once per compiled system and lent out, reset;
-* :mod:`.single` -- one trajectory (``solve``): segments with continuous angles, events, failures,
-  invariants on demand; runs with extra states (``propagate_in_turns``) and auxiliary systems
+* :mod:`.single` -- one trajectory (``solve``), every public name of the four below importable from it:
+* :mod:`.trajectory` -- its record (invariants on demand) and :class:`IntegrationError`;
+* :mod:`.segments` -- fixed segments with continuous angles (heyoka's error control kept tight);
+* :mod:`.failures` -- how a run ends: ``ok``, a terminal event, or a named failure;
+* :mod:`.auxiliary` -- runs with extra states (``propagate_in_turns``) and auxiliary systems
   (``through_grid``) for the studies;
 * :mod:`.invariants` -- the invariants along a run and their drifts;
 * :mod:`.conditioning` -- variational equations: how errors in the start grow;

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Optional, Sequence
 
 import numpy as np
@@ -50,7 +51,7 @@ class Problem:
     events: bool = True
     high_accuracy: bool = False
 
-    @property
+    @cached_property  # once per Problem: the lookup hashes the whole Model (~5 us a time)
     def compiled(self) -> CompiledModel:
         return compile_model(self.model, self.precision)
 

@@ -70,7 +70,7 @@ def parameters(model: Model, values, precision: Precision) -> dict:
     for p in model.parameters:
         raw = values.get(p.name, p.default)
         try:
-            val = precision.number(raw)
+            val = _default(precision, raw) if p.name not in values else precision.number(raw)
         except (ValueError, TypeError) as err:
             reason = "non_finite" if "finite" in str(err) else "not_a_number"
             raise InvalidStart(f"parameter {p.name}={raw!r}: {err}", reason) from None
@@ -84,6 +84,12 @@ def parameters(model: Model, values, precision: Precision) -> dict:
     except ValueError as err:
         raise InvalidStart(str(err), "parameter_relation") from None
     return out
+
+
+@lru_cache(maxsize=None)
+def _default(precision: Precision, value):
+    """A parameter's default (an exact sympy number) at ``precision``, rounded once per precision."""
+    return precision.number(value)
 
 
 def check_parameter_value(model: Model, name: str, value, shown=None) -> None:
@@ -113,8 +119,13 @@ def state(model: Model, values, precision: Precision) -> np.ndarray:
     else:
         values = _sequence(values)
     out = []
+    zero = None
     for name in STATE_NAMES:
-        raw = values.get(name, 0)
+        if name not in values:  # unset: 0, read once
+            zero = precision.zero() if zero is None else zero
+            out.append(zero)
+            continue
+        raw = values[name]
         try:
             out.append(precision.number(raw))
         except (ValueError, TypeError) as err:
@@ -163,7 +174,7 @@ def start_problems(model: Model, states, normal=None, shown=None):
     as_float = np.array([[float(v) for v in row] for row in states]) if states.dtype == object else \
         states.astype(float)
     dom = model.domain
-    lo, hi = float(dom.theta_min), float(dom.theta_max)
+    lo, hi = domain_ends(dom)
     problems, seen = [], set()
 
     def add(cols, reason, message):
@@ -191,16 +202,28 @@ def start_problems(model: Model, states, normal=None, shown=None):
         add(np.flatnonzero(values != 0), "constraint",
             lambda j: f"state violates the constraint {name} = 0 ({text}); it is {float(values[j]):g}")
     if normal is not None:
-        nf = np.array([float(v) for v in np.asarray(normal).ravel()])
-        with np.errstate(invalid="ignore"):
-            low = ~((nf > 0) & np.isfinite(nf))
-        add(np.flatnonzero(low), "normal_force",
-            lambda j: (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]:.6g} <= 0: the body "
-                       "would leave the plane; allowed: states with N > 0") if math.isfinite(nf[j]) else
-                      (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]}: its rates overflow "
-                       "the precision; allowed: states with a finite N > 0"))
+        for j, reason, message in _normal_force_problems(model, normal):
+            add([j], reason, lambda _, message=message: message)
     problems.sort()
     return problems
+
+
+def _normal_force_problems(model: Model, normal) -> list:
+    """(column, "normal_force", message) of each start whose normal force N/(Mg) is not a finite N > 0."""
+    nf = np.array([float(v) for v in np.asarray(normal).ravel()])
+    with np.errstate(invalid="ignore"):
+        low = ~((nf > 0) & np.isfinite(nf))
+    return [(int(j), "normal_force",
+             (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]:.6g} <= 0: the body "
+              "would leave the plane; allowed: states with N > 0") if math.isfinite(nf[j]) else
+             (f"the initial state of {model.name!r} has normal force N/(Mg) = {nf[j]}: its rates overflow "
+              "the precision; allowed: states with a finite N > 0")) for j in np.flatnonzero(low)]
+
+
+@lru_cache(maxsize=None)
+def domain_ends(dom) -> tuple:
+    """(theta_min, theta_max) of a model's domain as doubles (sympy's evaluation, once per domain)."""
+    return float(dom.theta_min), float(dom.theta_max)
 
 
 def _domain_end(end, like):
@@ -218,8 +241,9 @@ def _inside_domain(dom, thetas, as_float) -> np.ndarray:
     """theta_min < theta < theta_max for each start, compared at the start's own precision (in double a
     quad theta of 1e-400 would be 0, and one between float(pi) and pi would sit on the end)."""
     if thetas.dtype == np.float64:
+        lo, hi = domain_ends(dom)
         with np.errstate(invalid="ignore"):
-            return (float(dom.theta_min) < as_float) & (as_float < float(dom.theta_max))
+            return (lo < as_float) & (as_float < hi)
     out = np.zeros(len(thetas), bool)
     for j, th in enumerate(thetas):
         if math.isnan(float(th)):
@@ -277,13 +301,13 @@ def normal_force(compiled, y: np.ndarray, pars: dict):
     return _invariant_rows(compiled, y, pars)[compiled.n_invariants]
 
 
-def _overflowing_invariant(model: Model, compiled, y0: np.ndarray, pars: dict):
+def _overflowing_invariant(model: Model, rows: np.ndarray):
     """The first invariant (energy, ...) that is not finite at the start, as (name, value), or None.
 
-    Finite state values can still overflow the precision in the invariants (psidot = 1e200 in
-    double: I3 psidot^2 / 2 = inf); heyoka would then fail at its first step.
+    ``rows``: the compiled invariant function at the start (one column).  Finite state values can
+    still overflow the precision in the invariants (psidot = 1e200 in double: I3 psidot^2 / 2 = inf);
+    heyoka would then fail at its first step.
     """
-    rows = _invariant_rows(compiled, y0[:, None].copy(), pars)
     for inv, row in zip(model.invariants, rows):
         v = row[0]
         with np.errstate(invalid="ignore"):  # inf - inf
@@ -308,13 +332,15 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
             from .compile import compile_model
 
             compiled = compile_model(model, precision)
-        overflow = _overflowing_invariant(model, compiled, y0, pars)
+        rows = _invariant_rows(compiled, y0[:, None].copy(), pars)  # the invariants, then N/(Mg)
+        overflow = _overflowing_invariant(model, rows)
         if overflow is not None:
             raise InvalidStart(f"the initial state of {model.name!r} has {overflow[0]} = {overflow[1]}: its values "
                                f"overflow {precision.name}; allowed: states whose invariants are finite (smaller "
                                "rates, or mp:BITS)", "non_finite")
-        if model.normal_force is not None:
-            problem = first_problem(model, y0[:, None], normal_force(compiled, y0[:, None].copy(), pars), shown)
+        if model.normal_force is not None and compiled.has_normal_force:  # the rest was checked above
+            low = _normal_force_problems(model, rows[compiled.n_invariants])
+            problem = low[0] if low else None
     if problem is not None:
         raise InvalidStart(problem[2], problem[1])
     return y0, pars

@@ -1,0 +1,98 @@
+"""What :func:`verify.engine.single.solve` returns: a :class:`Trajectory`, or an :class:`IntegrationError`."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from models.symbols import STATE_NAMES
+
+from . import invariants as inv
+from ..precision import Precision
+
+
+class IntegrationError(RuntimeError):
+    """The integration failed; ``outcome`` says how (one of :data:`verify.engine.failures.FAILURES`).
+
+    ``t`` and ``state`` are where the failure was seen; ``trajectory`` is the run up to its last
+    valid output (a :class:`Trajectory` with that outcome and ``status = -1``), or None.
+    """
+
+    def __init__(self, message: str, outcome: str = "failed", t=None, state=None, trajectory=None):
+        super().__init__(message)
+        self.outcome, self.t, self.state, self.trajectory = outcome, t, state, trajectory
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """A run: grid times, states, outcome, invariants.
+
+    Attributes
+    ----------
+    t : ndarray, shape (n,)
+        Times reached on the grid, plus the event time if a terminal event stopped the run.
+    y : ndarray, shape (8, n)
+        States, rows in the order of ``state_names``; phi, psi continuous.
+    status : int
+        0 when ``t_end`` was reached, 1 when a terminal event stopped the run, 2 when a run
+        without events reached t_end after its theta left the domain (-1 only on the partial
+        record an :class:`IntegrationError` carries).
+    outcome : str
+        ``"ok"`` or ``"event:<name>"`` (``lies_flat``, ``rim_switch``, ``contact_lost``, ...);
+        ``"outside_domain"`` (status 2, ``events=False`` only); ``"failed:<reason>"`` only on an
+        :class:`IntegrationError`'s partial record.
+    steps : int
+        Taylor steps taken.
+    invariants : dict of name -> InvariantTrace (property)
+        Energy first, then the model's other conserved quantities; each with its values and
+        ``max_abs_drift``, ``max_rel_drift`` (over |I(0)|) and ``max_drift_vs_terms`` (over
+        the magnitudes of I's terms), see :class:`verify.engine.invariants.InvariantTrace`.
+        Evaluated when first read (Chaplygin's closed form costs milliseconds a point), then
+        kept; the drifts cover every output of the run.
+    normal_force : ndarray or None (property)
+        N / (M g) on the grid (contact holds while it is positive); None without a contact.
+    """
+
+    model: str
+    equations: str
+    precision: Precision
+    params: dict
+    t_end: object
+    t: np.ndarray
+    y: np.ndarray
+    status: int
+    message: str
+    outcome: str
+    t_events: dict
+    steps: int
+    tol: object
+    evaluation: inv.OnDemand = field(repr=False, compare=False)
+    state_names: tuple = STATE_NAMES
+
+    @property
+    def invariants(self) -> dict:
+        return self.evaluation.traces
+
+    @property
+    def normal_force(self):
+        return self.evaluation.normal_force
+
+    @property
+    def success(self) -> bool:
+        return self.status >= 0
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        return self.y[STATE_NAMES.index(name)]
+
+    @property
+    def final_state(self) -> dict:
+        return {n: self.y[i, -1] for i, n in enumerate(STATE_NAMES)}
+
+
+@dataclass(frozen=True)
+class End:
+    """Where the integrator stopped (read before it is given back to the pool)."""
+
+    time: object
+    state: list
+    tol: object
