@@ -11,7 +11,7 @@ from models import get_model, hurricane
 from models.base import ChaplyginSystem
 from models.rolling import derive
 from models.symbols import omega_body
-from verify.engine.invariants import chaplygin_integrals, fundamental_matrices
+from verify.engine.chaplygin import chaplygin_integrals, fundamental_matrices
 from verify.engine.single import resolve_parameters
 from verify.precision import parse_precision
 
