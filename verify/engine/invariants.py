@@ -161,7 +161,10 @@ def _scale_function(model: Model, inv_scale: sp.Expr):
 
 def _to_double(values: np.ndarray) -> np.ndarray:
     """Each value rounded to the nearest double, as ``float(v)`` (one cast for every dtype of the ladder)."""
-    return values if values.dtype == np.float64 else values.astype(float)
+    if values.dtype == np.float64:
+        return values
+    with np.errstate(invalid="ignore"):  # a NaN casts to NaN, as float() gives it, without numpy's warning
+        return values.astype(float)
 
 
 def _python_max(values: np.ndarray) -> float:
