@@ -85,14 +85,16 @@ def chaplygin_integrals(model: Model, precision: Precision, params: dict, thetas
     if method == "auto" and model.chaplygin.closed_form is not None:
         lo, hi = _domain(model.domain, precision)
         move = (thetas > lo) & (thetas < hi)
+        c1, c2 = _transported(model, precision, params, thetas[move], w2[move], w3[move])
+    else:
+        c1, c2 = _transported(model, precision, params, thetas, w2, w3)
     if move.all():
-        return _transported(model, precision, params, thetas, w2, w3)
-    c1, c2 = thetas.copy(), thetas.copy()  # of the run's dtype (and MPFR precision)
+        return c1, c2
+    out1, out2 = thetas.copy(), thetas.copy()  # of the run's dtype (and MPFR precision)
+    out1[move], out2[move] = c1, c2
     rest = ~move
-    if move.any():
-        c1[move], c2[move] = _transported(model, precision, params, thetas[move], w2[move], w3[move])
-    c1[rest], c2[rest] = _closed_form(model, precision, params, thetas[rest], w2[rest], w3[rest])
-    return c1, c2
+    out1[rest], out2[rest] = _closed_form(model, precision, params, thetas[rest], w2[rest], w3[rest])
+    return out1, out2
 
 
 @lru_cache(maxsize=None)
@@ -126,29 +128,43 @@ def _transport(system, parameters: tuple, precision: Precision) -> _Transport:
     return _Transport(system, parameters, precision)
 
 
-def _transported(model, precision, params, thetas, w2, w3):
-    """Phi(theta)^-1 w at the transport precision, rounded once to ``precision``."""
-    tp = transport_precision(precision)
+def _transported(model, precision, params, thetas, w2, w3, tp=None):
+    """Phi(theta)^-1 w at the transport precision, rounded once to ``precision``.
+
+    Thetas a fixed-exponent transport cannot reach (its Taylor coefficients overflow within
+    ~1e-200 of a singular end: cot(theta)'s n-th derivative ~ theta^-(n+1)) are transported again
+    by MPFR at the same bits, whose exponent range does not overflow.
+    """
+    tp = tp or transport_precision(precision)
     up = lambda values: _convert(values, precision, tp)  # noqa: E731 - exact: tp holds every value
-    phi = _fundamental(model, tp, {k: up([v])[0] for k, v in params.items()}, up(thetas))
+    phi, reached = _fundamental(model, tp, {k: up([v])[0] for k, v in params.items()}, up(thetas), partial=not tp.is_mpfr)
     p11, p12, p21, p22 = phi.T
     a, b = up(w2), up(w3)
     det = p11 * p22 - p12 * p21
-    return _convert((p22 * a - p12 * b) / det, tp, precision), _convert((p11 * b - p21 * a) / det, tp, precision)
+    c1, c2 = _convert((p22 * a - p12 * b) / det, tp, precision), _convert((p11 * b - p21 * a) / det, tp, precision)
+    if not reached.all():
+        missed = ~reached
+        c1[missed], c2[missed] = _transported(model, precision, params, thetas[missed], w2[missed], w3[missed],
+                                              parse_precision(f"mp:{tp.bits}"))
+    return c1, c2
 
 
 def fundamental_matrices(model: Model, precision: Precision, params: dict, thetas) -> np.ndarray:
     """Phi(theta) with Phi(theta_ref) = identity at each theta, at ``precision``: rows (p11, p12, p21, p22)."""
-    return _fundamental(model, precision, params, precision.array(list(thetas)))
+    return _fundamental(model, precision, params, precision.array(list(thetas)))[0]
 
 
-def _fundamental(model, precision, params, thetas) -> np.ndarray:
+def _fundamental(model, precision, params, thetas, partial: bool = False) -> tuple:
+    """(Phi at each theta, which thetas were reached).  ``partial``: where the transport stops (its
+    Taylor coefficients overflow near a singular end) the thetas beyond get NaN and False;
+    otherwise it raises."""
     tr = _transport(model.chaplygin, tuple((p.name, p.symbol) for p in model.parameters), precision)
     ref, identity = tr.ref, tr.identity
     pars = precision.array([params[name] for name in tr.parameter_names])
     distinct, owner = np.unique(thetas, return_inverse=True)  # sorted ascending; NaNs last
     found = np.empty((len(distinct), 4), dtype=identity.dtype)
     found[:] = identity  # theta == theta_ref
+    reached = np.ones(len(distinct), dtype=bool)
     above, below = distinct > ref, distinct < ref
     for where in (np.flatnonzero(above), np.flatnonzero(below)[::-1]):  # outwards from theta_ref
         if not len(where):
@@ -158,11 +174,19 @@ def _fundamental(model, precision, params, thetas) -> np.ndarray:
             res = ta.propagate_grid(grid)
         rows = res[-1]
         if len(rows) != len(grid):
-            raise RuntimeError(f"the Chaplygin transport stopped early ({res[0]}) on its way to theta = {grid[-1]}")
+            if not partial:
+                raise RuntimeError(f"the Chaplygin transport stopped early ({res[0]}) on its way to theta = {grid[-1]}")
+            missed = where[max(len(rows) - 1, 0):]
+            reached[missed] = False
+            with np.errstate(invalid="ignore"):
+                found[missed] = distinct[missed, None] * ((ref - ref) / (ref - ref))  # NaN of the dtype
+            where = where[: max(len(rows) - 1, 0)]
+            rows = rows[: len(where) + 1]
         found[where] = rows[1:]
     unordered = ~(above | below | (distinct == ref))
     found[unordered] = distinct[unordered, None]  # a NaN theta gives a NaN matrix
-    return found[owner.reshape(-1)]
+    owner = owner.reshape(-1)
+    return found[owner], reached[owner]
 
 
 @lru_cache(maxsize=None)
