@@ -37,18 +37,28 @@ def chaplygin_closed_form(theta, omega2, omega3, params):
     a + b = 1/2, a b = lam/4.  With omega3 = A w_e + B w_o the constants are the values
     at theta = pi/2: omega3(pi/2) = A, omega2(pi/2) = -(2k+1) B.  Returned as
     (chaplygin_1, chaplygin_2) = (omega2, omega3) transported to theta = pi/2, the same
-    numbers the fundamental-matrix route of :mod:`verify.engine.invariants` computes.
+    numbers the transport of :mod:`verify.engine.chaplygin` computes.
 
-    All arguments are mpmath numbers; the working precision is the caller's.
+    All arguments are mpmath numbers.  It works at the caller's precision plus 2 log2(1/|sin(theta)|)
+    bits: near theta = 0 and pi (x^2 -> 1, the singular point of 2F1, where w_e and w_o grow like
+    log(sin(theta)) and their derivatives like 1/sin(theta)^2) forming (A, B) cancels about that many
+    bits (measured: ~20 at theta = 1e-6, ~45 at 1e-12; without the extra bits the result at 1e-12
+    was NaN in double).  At sin(theta) = 0 the basis is singular and the division fails.
     """
-    kk = params["k"]
+    s = mpmath.sin(theta)
+    extra = 2 * max(0, -mpmath.mag(s)) if s else 0
+    with mpmath.extraprec(extra):
+        return _legendre_integrals(theta, omega2, omega3, params["k"])
+
+
+def _legendre_integrals(theta, omega2, omega3, kk):
     lam = 2 / (2 * kk + 1)
     root = mpmath.sqrt(mpmath.mpc(1 - 4 * lam)) / 4
     a, b = mpmath.mpf(1) / 4 + root, mpmath.mpf(1) / 4 - root
     x = mpmath.cos(theta)
     s = mpmath.sin(theta)
     z = x * x
-    F = lambda p, q, r: mpmath.hyp2f1(p, q, r, z)
+    F = lambda p, q, r: mpmath.hyp2f1(p, q, r, z)  # noqa: E731
     half = mpmath.mpf(1) / 2
     we = F(a, b, half)
     wo = x * F(a + half, b + half, 3 * half)

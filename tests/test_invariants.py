@@ -11,7 +11,7 @@ from models import get_model, hurricane
 from models.base import ChaplyginSystem
 from models.rolling import derive
 from models.symbols import omega_body
-from verify.engine.invariants import chaplygin_integrals, fundamental_matrices
+from verify.engine.chaplygin import chaplygin_integrals, fundamental_matrices
 from verify.engine.single import resolve_parameters
 from verify.precision import parse_precision
 
@@ -93,3 +93,61 @@ def test_invariants_are_evaluated_on_first_read_and_equal_an_eager_evaluation():
         assert tr.initial == values[name][0]
         assert tr.max_abs_drift == max(abs(float(v - values[name][0])) for v in values[name])
     assert sol.normal_force.tobytes() == normal[1:].tobytes()
+
+
+def _trace_per_point(values):
+    """The drift as the per-point loop computed it (the specification the vectorised trace keeps)."""
+    diffs = [abs(float(v - values[0])) for v in values]
+    return max(diffs)
+
+
+@pytest.mark.parametrize("precision", ["double", "long", "quad", "mp:100"])
+def test_vectorised_drift_has_the_per_point_bits(precision):
+    """trace's differences in the run's dtype, rounded to double and maxed: the loop's bits exactly
+    (IEEE subtraction in each dtype and a correctly rounded cast leave nothing to vary), on a run's
+    Chaplygin and energy values, and with Python max()'s NaN rule (a NaN after the first passed over,
+    a NaN first kept)."""
+    import math
+
+    import numpy as np
+
+    from verify import solve
+    from verify.engine.invariants import trace
+
+    sol = solve("disk", "0.5", {"theta": "1.2", "phidot": "1", "psidot": "10"}, precision=precision, n_eval=21)
+    for name, tr in sol.invariants.items():
+        values = np.asarray(tr.values)
+        got = trace(name, values, tr.term_scale, tr.eps)
+        assert got.max_abs_drift == _trace_per_point(values) > 0
+    v = sol.invariants["energy"].values
+    zero = v[:1] - v[:1]
+    with np.errstate(invalid="ignore"):
+        later_nan = np.concatenate([v[:3], zero / zero, v[3:]])  # 0/0: a NaN of the run's dtype
+    assert trace("I", later_nan, 1.0, 1e-16).max_abs_drift == _trace_per_point(later_nan)
+    assert math.isnan(trace("I", later_nan[3:], 1.0, 1e-16).max_abs_drift)
+
+
+@pytest.mark.parametrize("name", ["disk", "ring", "hurricane", "sliding-disk", "gyroscope", "effective"])
+def test_vectorised_term_scale_equals_the_per_column_one(name):
+    """scale_over (numpy over the columns) against lambdify(modules="math") column by column.  Every
+    scale is a sum of non-negative terms (absolute values, squares), each a product of at most ~6
+    factors from sin, cos, pow, sqrt, each correctly rounded or within 1 ulp in either library (glibc,
+    or numpy's SIMD on AVX-512): the two sums differ by at most ~8 eps relative, 16 allowed.  Where
+    numpy calls glibc (AVX2), they agree to the bit (float_power keeps libm's pow)."""
+    import numpy as np
+    import sympy as sp
+
+    from models.symbols import STATE
+    from verify import solve
+    from verify.engine.invariants import scale_over
+    from verify.standard import STANDARD_STATES
+
+    model = get_model(name)
+    for precision in ("double", "quad"):
+        sol = solve(name, "1", STANDARD_STATES[name], precision=precision, n_eval=31)
+        y = sol.evaluation._y
+        for inv in model.invariants:
+            f = sp.lambdify(list(STATE) + [p.symbol for p in model.parameters], inv.scale, modules="math")
+            pars = [float(sol.params[p.name]) for p in model.parameters]
+            per_column = max(f(*[float(v) for v in col], *pars) for col in y.T)
+            assert abs(scale_over(model, inv.scale, y, sol.params) - per_column) <= 16 * 2.0**-52 * per_column
