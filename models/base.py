@@ -114,6 +114,9 @@ class Model:
     invariants: tuple  # of Invariant; energy first
     domain: Domain
     normal_force: Optional[sp.Expr] = None  # N / (M g); contact holds while positive
+    # a_C . Z with thetaddot, phiddot, psiddot left as symbols: normal_force is 1 + this / g on shell
+    # (paper Eq. 6); the terminal event reads N through it and the right-hand side's own expressions
+    vertical_acceleration: Optional[sp.Expr] = None
     chaplygin: Optional[ChaplyginSystem] = None
     constraints: tuple = field(default_factory=tuple)  # (name, expr == 0 at start, description)
     units: str = ""

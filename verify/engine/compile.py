@@ -5,6 +5,20 @@ integrator serves a whole sweep; the values for them are laid out by name
 (:meth:`CompiledModel.parameter_vector`), never by the order of a caller's mapping.  Compiled
 objects are cached per (model, precision); heyoka itself caches the machine code in memory and
 on disk.
+
+The terminal events guard every run, so what they cost is paid on every step: heyoka adds each
+event's function to the Taylor decomposition of the system and computes its Taylor
+coefficients with the state's.  The loss of contact is therefore detected on
+N/(Mg) = 1 + a_C . Z / g (:func:`contact_event`) written with the right-hand side's own
+expressions for the accelerations, which the decomposition shares: 6 more terms for the disk,
+where the simplified N/(Mg) of :attr:`models.base.Model.normal_force` (which shares nothing
+with the right-hand side) added 20.
+
+heyoka's step size is not blind to the events: it takes the largest magnitude over the state
+*and the event functions* (of the values and of the last two Taylor coefficients).  So an
+event's function keeps the scale of what it replaces -- N/(Mg) itself, not g N/(Mg) -- and a
+run's steps stay those of the simplified N wherever the state, not N, sets that maximum (the
+usual case: N/(Mg) is of order 1 and its coefficients are those of the accelerations over g).
 """
 from __future__ import annotations
 
@@ -16,7 +30,7 @@ import heyoka as hy
 import sympy as sp
 
 from models.base import Model
-from models.symbols import STATE, STATE_NAMES, theta
+from models.symbols import ACCELERATIONS, STATE, STATE_NAMES, g, theta
 
 from ..precision import Precision
 
@@ -88,6 +102,36 @@ def symbol_map(model: Model, variables) -> dict:
     return mapping
 
 
+def contact_event_function(model: Model):
+    """N/(Mg) as the terminal event ``contact_lost`` reads it (a sympy expression), or None.
+
+    1 + a_C . Z / g (paper Eq. 6: M a_C = F - M g Z, N = F . Z) with the accelerations left as the
+    symbols ``ACCELERATIONS``: on shell it is ``model.normal_force``, the same function at the
+    same scale (see the module docstring for why the scale matters).  A model without
+    ``vertical_acceleration`` falls back to its ``normal_force`` itself.
+    """
+    if model.normal_force is None:
+        return None
+    if model.vertical_acceleration is None:
+        return model.normal_force
+    return 1 + model.vertical_acceleration / g
+
+
+def contact_event(model: Model, mapping: dict, accelerations):
+    """The heyoka function of the terminal event ``contact_lost`` (direction negative), or None.
+
+    :func:`contact_event_function` with ``mapping`` for the state and parameter symbols and
+    ``accelerations`` -- the heyoka expressions of thetaddot, phiddot, psiddot the system
+    integrates -- for the accelerations: heyoka's decomposition then computes those once, for
+    the system and the event alike.  Pass the very expressions of the system's right-hand side
+    (or of a factor of it, e.g. before a batch system multiplies it by a lane's ``alive``).
+    """
+    f = contact_event_function(model)
+    if f is None:
+        return None
+    return to_heyoka(f, {**mapping, **dict(zip(ACCELERATIONS, accelerations))})
+
+
 @lru_cache(maxsize=None)
 def compile_model(model: Model, precision: Precision) -> CompiledModel:
     variables = tuple(hy.make_vars(*STATE_NAMES))
@@ -101,16 +145,16 @@ def compile_model(model: Model, precision: Precision) -> CompiledModel:
     ]
     outputs = [to_heyoka(inv.expr, mapping) for inv in model.invariants]
     if model.normal_force is not None:
-        normal = to_heyoka(model.normal_force, mapping)
-        events.append(("contact_lost", normal, hy.event_direction.negative))
-        outputs.append(normal)
+        events.append(("contact_lost", contact_event(model, mapping, [rhs for _, rhs in system[3:6]]),
+                       hy.event_direction.negative))
+        outputs.append(to_heyoka(model.normal_force, mapping))
     if model.chaplygin is not None:
         outputs += [to_heyoka(r, mapping) for r in model.chaplygin.rates]
     cf = hy.cfunc(outputs, list(variables), **precision.integrator_kwargs())
     system_exprs = [rhs for _, rhs in model.rhs()] + [model.domain.theta_min, model.domain.theta_max]
     function_exprs = [i.expr for i in model.invariants] + list(model.chaplygin.rates if model.chaplygin else [])
     if model.normal_force is not None:
-        system_exprs.append(model.normal_force)
+        system_exprs.append(contact_event_function(model))
         function_exprs.append(model.normal_force)
     return CompiledModel(model, precision, variables, system, tuple(events), cf, model.normal_force is not None,
                          _n_pars(model, system_exprs), _n_pars(model, function_exprs))
