@@ -59,14 +59,6 @@ class CompiledModel:
     n_pars_system: int  # heyoka wants exactly as many parameter values as the highest par[i] used
     n_pars_function: int
 
-    def system_pars(self, values):
-        """The first n_pars_system of ``values`` already in ``par[i]`` order (prefer :meth:`parameter_vector`)."""
-        return values[: self.n_pars_system]
-
-    def function_pars(self, values):
-        """The first n_pars_function of ``values`` already in ``par[i]`` order (prefer :meth:`parameter_vector`)."""
-        return values[: self.n_pars_function]
-
     def parameter_vector(self, values: Mapping, for_function: bool = False, every: bool = False):
         """The ``par[i]`` values of the system (or of ``invariant_function``) from a name -> value mapping.
 

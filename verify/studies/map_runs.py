@@ -32,7 +32,7 @@ def reduced_system(name: str):
     ``(name, expression, direction)`` -- theta at the lower and upper bound (runtime
     parameters), and the normal force where the model has a contact.
     """
-    from verify.engine.compile import to_heyoka
+    from verify.engine.compile import contact_event, to_heyoka
 
     model = get_model(name)
     variables = hy.make_vars("theta", "thetadot", "phidot", "psidot")
@@ -46,12 +46,14 @@ def reduced_system(name: str):
         extra = expr.free_symbols - allowed
         if extra:
             raise RuntimeError(f"model {name!r}: the reduced system depends on {sorted(map(str, extra))}")
-    system = [(v, to_heyoka(r, mapping) * alive) for v, r in zip(variables, rhs)]
+    unscaled = [to_heyoka(r, mapping) for r in rhs]
+    system = [(v, r * alive) for v, r in zip(variables, unscaled)]
     th = variables[0]
     events = [("below", th - lower, hy.event_direction.negative),
               ("above", th - upper, hy.event_direction.positive)]
     if model.normal_force is not None:
-        events.append(("contact_lost", to_heyoka(model.normal_force, mapping), hy.event_direction.negative))
+        # on the system's own accelerations, so that heyoka computes them once (compile.contact_event)
+        events.append(("contact_lost", contact_event(model, mapping, unscaled[1:]), hy.event_direction.negative))
     return tuple(variables), tuple(system), tuple(events), n
 
 

@@ -70,7 +70,7 @@ from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
 from ..circling import circling, theta_maxima
 from ..engine import batch, validation
 from ..engine.batch import Freeze as _Freeze  # noqa: F401  (patched by a negative control of the guard)
-from ..engine.compile import symbol_map, to_heyoka
+from ..engine.compile import contact_event, symbol_map, to_heyoka
 from ..engine.single import COLLAPSE_FACTOR
 from ..engine.lanes import simd_width
 from ..precision import parse_precision
@@ -112,7 +112,8 @@ def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False
     mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
     lanes = batch.Lanes(alive=n, reason=n + 1, t_stop=n + 2)
     alive, last = hy.par[n], hy.par[n + 3]
-    rhs = [to_heyoka(r, mapping) * alive for _, r in model.rhs()]
+    unscaled = [to_heyoka(r, mapping) for _, r in model.rhs()]
+    rhs = [r * alive for r in unscaled]
     sys_ = list(zip(variables, rhs))
     if model.dissipation is not None:
         W = hy.make_vars("W")
@@ -129,7 +130,10 @@ def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False
         exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - last, hy.event_direction.positive)]
     normal = None
     if model.normal_force is not None:
-        exprs.append(("contact_lost", to_heyoka(model.normal_force, mapping), hy.event_direction.negative))
+        # the event reads the system's own accelerations (rows thetadot, phidot, psidot) so that
+        # heyoka's decomposition computes them once (verify.engine.compile.contact_event)
+        exprs.append(("contact_lost", contact_event(model, mapping, [unscaled[i] for i in (THD, PHD, PSD)]),
+                      hy.event_direction.negative))
         normal = batch.ScalarTwin(validation.normal_force_function(model_name), hy.cfunc(
             [to_heyoka(model.normal_force, symbol_map(model, variables[:8]))], variables[:8], batch_size=1))
     safe = 0.5 * (lo + hi)
