@@ -62,7 +62,7 @@ def scalar_runs(name: str, motion: str, smap: maps.StabilityMap, with_conditioni
     """Each point of ``smap`` by ``solve`` (full equations), with the conditioning bound of the module docstring."""
     prec = parse_precision("double")
     model = get_model(name)
-    fast = replace(model, chaplygin=None)  # same equations; skips the closed-form invariants (mpmath 2F1 per sample)
+    fast = replace(model, chaplygin=None)  # same equations; skips the Chaplygin invariants the map does not read
     grid = maps.sample_times(smap.t_end, max(float(smap.rates.max()), math.sqrt(G)))
     assert len(grid) == smap.n_samples
     pars = resolve_parameters(model, {}, prec)

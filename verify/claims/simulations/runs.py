@@ -26,7 +26,8 @@ RING_PRINTED = dict(parameter_set("printed"))
 @lru_cache(maxsize=None)
 def _without_chaplygin(name: str):
     """The model without its Chaplygin integrals: the figure runs read the path on a dense grid,
-    and the closed-form integrals (mpmath 2F1, ~2 ms a point) would cost minutes there; energy
+    and the figure checks read no Chaplygin integral (they were left out when each point cost ~2 ms
+    of mpmath 2F1; the transport in theta is now cheap, but adding them would only add work); energy
     is still tracked at every point."""
     model = get_model(name)
     return dataclasses.replace(model, chaplygin=None) if model.chaplygin is not None else model
