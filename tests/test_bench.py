@@ -135,3 +135,19 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     # the layout does not depend on the numbers
     assert _skeleton(render_markdown(_scaled(data, 1.37))) == _skeleton(md)
     assert (tmp_path / "figures" / "bench-work-precision.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_compile_cost_script_runs_in_a_fresh_process():
+    """The script is a string run by ``python -c``: nothing else checks that its names are defined
+    (a refactoring once dropped its imports and only the full benchmark found out)."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from verify.bench.compile_cost import _COMPILE_SCRIPT
+
+    root = Path(__file__).resolve().parents[1]
+    res = subprocess.run([sys.executable, "-c", _COMPILE_SCRIPT, json.dumps([])], cwd=root,
+                         capture_output=True, text=True, timeout=300)
+    assert res.returncode == 0, res.stderr[-2000:]

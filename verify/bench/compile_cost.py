@@ -11,8 +11,12 @@ from pathlib import Path
 _COMPILE_SCRIPT = r"""
 import json, resource, sys, time
 t0 = time.perf_counter()
+import heyoka as hy
 t_import = time.perf_counter() - t0
+from models import get_model
 from models.common import PAPER_G
+from verify.engine.compile import compile_model
+from verify.precision import parse_precision
 t0 = time.perf_counter()
 model = get_model("disk")
 t_derive = time.perf_counter() - t0
