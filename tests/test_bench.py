@@ -151,3 +151,18 @@ def test_the_compile_cost_script_runs_in_a_fresh_process():
     res = subprocess.run([sys.executable, "-c", _COMPILE_SCRIPT, json.dumps([])], cwd=root,
                          capture_output=True, text=True, timeout=300)
     assert res.returncode == 0, res.stderr[-2000:]
+
+
+def test_the_report_names_the_latest_benchmark_run_and_does_not_run_one():
+    import inspect
+
+    from verify.report.markdown import benchmarks_section
+    from verify.report.write import write_report
+
+    assert "bench" not in inspect.signature(write_report).parameters
+    assert "No benchmark run" in "\n".join(benchmarks_section(None))
+    run = {"date": "2026-11-24 16:00 UTC", "sources": {"commit": "0123456789abcdef", "modified": False},
+           "machine": {"cpu": "AMD EPYC", "cpus": 2, "simd_size": 4, "heyoka": "7.13.2"}}
+    text = "\n".join(benchmarks_section(run))
+    assert "2026-11-24 16:00 UTC" in text and "0123456789ab" in text and "AMD EPYC" in text
+    assert "No benchmark run" not in text

@@ -1,6 +1,6 @@
 """Benchmarks: the suite against bare heyoka, long-run energy error, accuracy for the time spent, JIT cost.
 
-``python -m verify bench`` (and the last stage of ``python -m verify report``) measures, in
+``python -m verify bench`` (``make bench``; the report does not re-run it) measures, in
 one run, and writes ``reports/BENCHMARKS.md``, ``reports/benchmarks.json`` and two figures.
 The machines are shared and noisy, so speed is reported as *ratios measured in the same run*
 against bare heyoka doing the same work on the same compiled equations

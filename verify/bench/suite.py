@@ -1,6 +1,7 @@
 """Every benchmark in one run (:func:`run_benchmarks`) and the one writer of its files (:func:`write_benchmarks`)."""
 from __future__ import annotations
 
+import datetime
 import json
 import os
 import platform
@@ -9,7 +10,7 @@ from pathlib import Path
 
 import heyoka as hy
 
-from ..provenance import write_atomic
+from ..provenance import source_commit, write_atomic
 from .compile_cost import compile_cost
 from .energy import energy_growth
 from .ensembles import ensemble_against_bare
@@ -41,7 +42,9 @@ def run_benchmarks(quick: bool = False, progress=None) -> dict:
         if progress:
             progress(f"{text} [{time.monotonic() - t0:.0f} s]")
 
-    results = {"machine": machine(), "quick": quick, "targets": {k: f"{op} {v:g}" for k, (op, v) in TARGETS.items()},
+    results = {"machine": machine(), "quick": quick,
+               "date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+               "sources": source_commit(), "targets": {k: f"{op} {v:g}" for k, (op, v) in TARGETS.items()},
                "load_average_start": [round(v, 2) for v in os.getloadavg()]}
     results["solve_vs_bare"] = (solve_against_bare("disk", _size("solve_t_ends", quick), "double",
                                                    _size("solve_rounds", quick), progress=say)

@@ -213,7 +213,7 @@ def _output_folder(folder: str) -> str:
 def cmd_report(args, session: Session) -> int:
     from ..report import write_report
 
-    write_report(_output_folder(args.out), bench=not args.no_bench)
+    write_report(_output_folder(args.out))
     return 0
 
 

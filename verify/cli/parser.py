@@ -93,7 +93,6 @@ def parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("report", help="run the verification and write reports/")
     r.add_argument("--out", default="reports", help="output folder (default: reports)")
-    r.add_argument("--no-bench", action="store_true", help="skip the benchmarks (BENCHMARKS.md is left as it is)")
     r.set_defaults(run=cmd_report)
 
     b = sub.add_parser("bench", help="benchmarks: solve, sweeps and maps against bare heyoka, energy error, work against "

@@ -3,21 +3,35 @@ and the regenerated figures, with the sections rendered elsewhere spliced in (no
 from __future__ import annotations
 
 from collections import Counter
+from typing import Optional
 
 from ..claims import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS, missing
 from ..claims.base import Claim, quote_fragments
 
-#: The pointer to BENCHMARKS.md: speed depends on the machine, so it is not in this byte-reproducible file.
-BENCHMARKS_SECTION = [
-    "", "## Benchmarks", "",
-    "Speed depends on the machine, so the benchmarks are not in this file (which is byte-reproducible): "
-    "`python -m verify bench`, the last stage of `make report`, writes [BENCHMARKS.md](BENCHMARKS.md) and "
-    "`benchmarks.json` -- work against precision against the reference set (heyoka at double, long, quad and "
-    "MPFR; scipy's DOP853, Radau and LSODA; mpmath's odefun), the energy error over 10^6 steps, sweep "
-    "throughput (loop, batch, ensemble, scipy) and the JIT cost with and without heyoka's disk cache, with "
-    "the machine they ran on.",
-    "",
-]
+
+def benchmarks_section(latest: Optional[dict]) -> list:
+    """The pointer to BENCHMARKS.md, naming the latest benchmark run (``benchmarks.json``) if any.
+
+    Speed depends on the machine, so the numbers stay out of this byte-reproducible file; the
+    report does not run the benchmarks (``make bench`` does), it names the run it points to.
+    """
+    lines = ["", "## Benchmarks", "",
+             "Speed depends on the machine, so the benchmarks are not in this file: `make bench` "
+             "(`python -m verify bench`) writes [BENCHMARKS.md](BENCHMARKS.md) and `benchmarks.json` -- the suite "
+             "against bare heyoka on the same work, the energy error over long runs, work against precision "
+             "against the reference set (heyoka at double, long, quad and MPFR; scipy's DOP853, Radau and LSODA; "
+             "mpmath's odefun), heyoka's own modes and the JIT cost, with the machine they ran on. "
+             "`make report` does not re-run them.", ""]
+    if latest is None:
+        lines += ["No benchmark run is in this folder yet.", ""]
+    else:
+        m = latest.get("machine", {})
+        when = latest.get("date", "an unrecorded date")
+        src = (latest.get("sources") or {}).get("commit")
+        lines += [f"Latest run: {when}, on {m.get('cpu', '?')} ({m.get('cpus', '?')} cores, SIMD batch size "
+                  f"{m.get('simd_size', '?')}), heyoka {m.get('heyoka', '?')}"
+                  + (f", sources at commit {src[:12]}" if src else "") + ".", ""]
+    return lines
 
 
 def _quote_text(claim: Claim) -> str:

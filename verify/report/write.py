@@ -19,7 +19,7 @@ from ..claims import ERRATUM, all_claims
 from ..claims.base import Claim, Evaluation, quote_fragments
 from ..provenance import provenance, write_atomic
 from .html import render_html
-from .markdown import BENCHMARKS_SECTION, render_markdown
+from .markdown import benchmarks_section, render_markdown
 
 
 def evaluate_all(progress=None) -> list:
@@ -67,7 +67,7 @@ def _reference_check_job(precision: str):
     return [c.to_record() for c in check_set(precision)], round(time.monotonic() - t0, 1)
 
 
-def write_report(out="reports", bench: bool = True) -> None:
+def write_report(out="reports") -> None:
     from ..studies.conservation import PRECISIONS
     from .conservation import render_markdown as conservation_markdown
 
@@ -142,7 +142,7 @@ def write_report(out="reports", bench: bool = True) -> None:
 
     extra = render_reference(studies["reference"]["index"], studies["reference"]["checks"])
     extra += render_retrograde(studies["retrograde"])
-    extra += BENCHMARKS_SECTION
+    extra += benchmarks_section(_latest_benchmarks(out))
     from .summary import build as build_summary
 
     summary = build_summary(results, studies)
@@ -171,13 +171,11 @@ def write_report(out="reports", bench: bool = True) -> None:
     timing["machine"] = {"platform": platform.platform(), "processor": platform.machine()}
     write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
     say(f"wrote {out}/REPORT.md, report.html, results.json, conservation.md ({timing['total_seconds']} s)")
-    if bench:
-        from ..bench import run_benchmarks, write_benchmarks
 
-        say("benchmarks (alone, after everything else):")
-        t5 = time.monotonic()
-        write_benchmarks(run_benchmarks(progress=say), out)
-        timing["bench_seconds"] = round(time.monotonic() - t5, 1)
-        timing["total_seconds"] = round(time.monotonic() - t0, 1)
-        write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
-        say(f"wrote {out}/BENCHMARKS.md, benchmarks.json ({timing['bench_seconds']} s)")
+
+def _latest_benchmarks(out: Path):
+    """The benchmark run in ``out/benchmarks.json`` (written by ``make bench``), or None."""
+    path = Path(out) / "benchmarks.json"
+    if not path.exists():
+        return None
+    return json.loads(path.read_text())
