@@ -7,38 +7,59 @@ import pytest
 
 from verify.claims import all_claims
 from verify.provenance import write_atomic
-from verify.report.html import render_html
+from verify.report.claim_records import claim_record
 from verify.report.markdown import render_markdown
-from verify.report.write import result_record
+from verify.report.page import render_html
 
-KEYS = {"id", "source", "statement", "verdict", "expected", "observed", "detail"}
+KEYS = {"id", "source", "section", "statement", "verdict", "expected", "observed", "detail"}
 
 
-def _some_results():
+def _some_records():
     wanted = {"eq-40", "eq-41", "eq-1", "fig-2"}
-    return [(c, c.evaluate()) for c in all_claims() if c.id in wanted]
+    return [claim_record(c, c.evaluate()) for c in all_claims() if c.id in wanted]
+
+
+def _results(records):
+    return {"summary": None, "claims": records, "conservation": [], "not_covered": {}, "failures": [], "figures": [],
+            "studies": {"thresholds": [], "captions": [], "spindown": [], "precision": [], "maps": [], "dissipation": [],
+                        "retrograde": {}, "reference": {"index": {"cases": []}, "checks": {}}},
+            "provenance": {"versions": {"heyoka": "x", "sympy": "y", "mpmath": "z"}, "source_sha256": "x",
+                           "source_commit": {"commit": None, "modified": None}, "precisions": ["double"]}}
 
 
 def test_result_records_carry_the_required_fields():
-    for claim, ev in _some_results():
-        rec = result_record(claim, ev)
+    for rec in _some_records():
         assert KEYS <= set(rec)
-        if ev.verdict == "erratum":
+        if rec["verdict"] == "erratum":
             assert rec["correction"]
+        json.dumps(rec)
 
 
-def test_rendering_is_deterministic_and_lists_errata(tmp_path):
-    results = _some_results()
-    prov = {"versions": {}, "source_sha256": "x", "precisions": ["double"]}
-    a = render_markdown(results, "# Conservation\n", prov)
-    b = render_markdown(results, "# Conservation\n", prov)
+def test_rendering_is_deterministic_and_anchors_every_claim(tmp_path, monkeypatch):
+    import verify.report.markdown as md_module
+    import verify.report.page as page_module
+
+    results = _results(_some_records())
+    monkeypatch.setattr(md_module, "sections", _claims_sections)
+    monkeypatch.setattr(page_module, "sections", _claims_sections)
+    a, b = render_markdown(results), render_markdown(results)
     assert a == b
-    assert "## Errata" in a and "### Eq. 40" in a
-    page = render_html(a, {})
-    assert page.startswith("<!DOCTYPE html>") and "<table>" in page
+    assert '<a id="eq-40"></a>Eq. 40: erratum (typo)' in a
+    page = render_html(results, {})
+    assert page.startswith("<!DOCTYPE html>") and 'id="eq-40"' in page and 'href="#eq-41"' in page
+    assert page == render_html(results, {})
     write_atomic(tmp_path / "REPORT.md", a)
     assert (tmp_path / "REPORT.md").read_text() == a
-    json.dumps([result_record(c, e) for c, e in results])
+
+
+def _claims_sections(results, benchmarks):
+    by = {}
+    for rec in results["claims"]:
+        by.setdefault(rec["section"], []).append(rec)
+    from verify.report.markdown import claim_markdown
+
+    return [(f"s{i}", title, "\n".join(line for r in recs for line in claim_markdown(r)), recs)
+            for i, (title, recs) in enumerate(by.items())]
 
 
 def test_atomic_write_leaves_the_old_file_on_failure(tmp_path):

@@ -211,9 +211,17 @@ def _output_folder(folder: str) -> str:
 
 
 def cmd_report(args, session: Session) -> int:
-    from ..report import write_report
+    from ..report.write import ReportIncomplete, write_report
 
-    write_report(_output_folder(args.out))
+    if args.fresh and args.render_only:
+        raise UsageError("--fresh recomputes every job and --render-only computes none; give one of them")
+    try:
+        write_report(_output_folder(args.out), fresh=args.fresh, render_only=args.render_only)
+    except ValueError as err:  # no results.json to render from
+        raise UsageError(str(err)) from None
+    except ReportIncomplete as err:
+        print(f"report incomplete: {err}", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -93,6 +93,9 @@ def parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("report", help="run the verification and write reports/")
     r.add_argument("--out", default="reports", help="output folder (default: reports)")
+    r.add_argument("--fresh", action="store_true", help="recompute every job, ignoring the cache (.report-cache/)")
+    r.add_argument("--render-only", action="store_true",
+                   help="compute nothing: render REPORT.md and report.html from the folder's results.json")
     r.set_defaults(run=cmd_report)
 
     b = sub.add_parser("bench", help="benchmarks: solve, sweeps and maps against bare heyoka, energy error, work against "

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import io
+from dataclasses import dataclass
 
 import matplotlib
 
@@ -12,6 +13,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from ..claims.base import FigureData  # noqa: E402
+
+@dataclass(frozen=True)
+class Image:
+    """A drawn figure: its file name (with extension), bytes and alt text."""
+
+    filename: str
+    data: bytes
+    alt: str
+
 
 ROWS = (("path", "y / R"), ("theta", "theta"), ("phi", "phi"), ("omega3", "omega3"))
 

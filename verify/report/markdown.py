@@ -1,12 +1,38 @@
-"""REPORT.md's body from the claim evaluations: the verdict counts, errata, qualified captions, every claim
-and the regenerated figures, with the sections rendered elsewhere spliced in (no numerics here)."""
+"""REPORT.md from results.json: the summary, every claim with the paper's words beside its verdict and
+evidence, the conservation table and the studies (rendered by their own modules), as named sections.
+
+The claims' texts are plain text with math in ``$...$``, escaped by :func:`.markup.text`.
+:func:`sections` is shared by REPORT.md and report.html
+(:mod:`.page`), which shows the same sections with the claims laid out as cards.
+"""
 from __future__ import annotations
 
+import json
+import re
 from collections import Counter
 from typing import Optional
 
-from ..claims import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS, missing
-from ..claims.base import Claim, quote_fragments
+from ..claims.base import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS
+from .markup import quote, text
+from .summary import SEVERITY_WORDS
+
+def verdict_label(rec: dict) -> str:
+    return rec["verdict"] + (f" ({rec['severity']})" if rec["verdict"] == ERRATUM else "")
+
+
+def claim_markdown(rec: dict) -> list:
+    """One claim: heading (anchored by the claim's id), the quote, the verdict and the evidence, its figures."""
+    lines = [f'### <a id="{rec["id"]}"></a>{text(rec["source"])}: {verdict_label(rec)}', ""]
+    lines += quote(rec["quote"]) + [""]
+    fields = [("verdict", verdict_label(rec) + (f": {SEVERITY_WORDS[rec['severity']]}" if rec.get("severity") else "")),
+              ("read as", rec.get("reading")), ("independent route", rec["expected"]), ("the paper", rec["observed"]),
+              ("corrected", rec.get("correction")), ("qualification", rec.get("qualification")),
+              ("measures", "; ".join(f"{m['measure']}: {m['value']}" for m in rec.get("measures", ())) or None),
+              ("detail", rec["detail"]), ("method", f"{rec['method']}; tolerance: {rec['tolerance']}")]
+    lines += [f"- **{name}:** {text(value)}" for name, value in fields if value]
+    for fig in rec.get("figures", ()):
+        lines += ["", f"![{text(fig['alt'])}](figures/{fig['file']})"]
+    return lines + [""]
 
 
 def benchmarks_section(latest: Optional[dict]) -> list:
@@ -15,7 +41,7 @@ def benchmarks_section(latest: Optional[dict]) -> list:
     Speed depends on the machine, so the numbers stay out of this byte-reproducible file; the
     report does not run the benchmarks (``make bench`` does), it names the run it points to.
     """
-    lines = ["", "## Benchmarks", "",
+    lines = ["## Benchmarks", "",
              "Speed depends on the machine, so the benchmarks are not in this file: `make bench` "
              "(`python -m verify bench`) writes [BENCHMARKS.md](BENCHMARKS.md) and `benchmarks.json` -- the suite "
              "against bare heyoka on the same work, the energy error over long runs, work against precision "
@@ -34,65 +60,89 @@ def benchmarks_section(latest: Optional[dict]) -> list:
     return lines
 
 
-def _quote_text(claim: Claim) -> str:
-    return " ... ".join(quote_fragments(claim.quote))
-
-
-def _md_escape(text: str) -> str:
-    return str(text).replace("|", "\\|").replace("\n", " ")
-
-
-def render_markdown(results: list, conservation_md: str, prov: dict, figure_dir: str = "figures",
-                    summary: dict = None) -> str:
+def _overview(results: dict) -> list:
     from .summary import render as render_summary
 
-    counts = Counter(ev.verdict for _, ev in results)
-    eqs, figs = missing()
-    lines = [
-        "# Verification report",
-        "",
-        "Every numbered equation and figure caption of `../shared/paper.md`, each quoted and given a verdict from an",
-        "independent route (sympy identities against the rows derived from the vectors, mpmath numbers, heyoka runs",
-        "read by two measures each).",
-        "",
-    ]
-    if summary is not None:
-        lines += render_summary(summary)
+    claims = results["claims"]
+    counts = Counter(c["verdict"] for c in claims)
+    lines = ["Every numbered equation and figure caption of the paper (`verify/claims/paper.md`, a copy of "
+             "`../shared/paper.md`), each quoted and given a verdict from an independent route (sympy identities "
+             "against the rows derived from the vectors, mpmath numbers, heyoka runs read by two measures each).", ""]
+    if results.get("failures"):
+        lines += ["**Incomplete report:** these jobs failed, so what they compute is missing below:", ""]
+        lines += [f"- `{f['job']}`: {text(f['error'])}" for f in results["failures"]]
+        lines.append("")
+    if results.get("summary"):
+        lines += render_summary(results["summary"])
     lines += ["| verdict | claims |", "|---|---:|"]
     lines += [f"| {v} | {counts.get(v, 0)} |" for v in VERDICTS]
-    lines += [f"| total | {len(results)} |", ""]
-    if eqs or figs:
-        lines += [f"Not yet covered by a claim: equations {eqs or 'none'}; figures {figs or 'none'}.", ""]
-    lines += ["## Errata, by severity", ""]
-    for severity in SEVERITIES:
-        for claim, ev in results:
-            if ev.verdict == ERRATUM and claim.severity == severity:
-                lines += [f"### {claim.source} ({severity})", "",
-                          f"- **the paper:** {_quote_text(claim)}",
-                          *([f"- **read as:** {claim.reading}"] if claim.reading else []),
-                          f"- **as printed:** {ev.observed}",
-                          f"- **corrected:** {ev.correction}",
-                          f"- **evidence:** {ev.expected}. {ev.detail}", ""]
-    lines += ["## Qualified captions", ""]
-    for claim, ev in results:
-        if ev.verdict == QUALIFIED:
-            lines += [f"### {claim.source}", "", f"- **the paper:** {_quote_text(claim)}",
-                      *([f"- **read as:** {claim.reading}"] if claim.reading else []),
-                      f"- **qualification:** {ev.qualification}",
-                      f"- **evidence:** {ev.expected}. {ev.detail}", ""]
-    section = None
-    for claim, ev in results:
-        if claim.section != section:
-            section = claim.section
-            lines += [f"## {section}", "", "| source | the paper | verdict | independent route | paper | detail |",
-                      "|---|---|---|---|---|---|"]
-        verdict = ev.verdict + (f" ({claim.severity})" if ev.verdict == ERRATUM else "")
-        detail = ev.detail + ("" if not ev.measures else " Measures: " + "; ".join(f"{n}: {v}" for n, v in ev.measures))
-        lines.append(f"| {claim.source} | {_md_escape(_quote_text(claim))} | {verdict} | {_md_escape(ev.expected)} "
-                     f"| {_md_escape(ev.observed)} | {_md_escape(detail)} |")
-    lines += ["", "## Regenerated figures", ""]
-    for claim, ev in results:
-        for fig in ev.figures:
-            lines += [f"### {fig.title} ({ev.verdict})", "", f"![{fig.title}]({figure_dir}/{fig.name}.png)", ""]
-    lines += ["", conservation_md.replace("# Conservation", "## Conservation", 1), ""]
+    lines += [f"| total | {len(claims)} |", ""]
+    nc = results.get("not_covered", {})
+    if nc.get("equations") or nc.get("figures"):
+        lines += [f"Not yet covered by a claim: equations {nc['equations'] or 'none'}; figures {nc['figures'] or 'none'}.",
+                  ""]
+    return lines
+
+
+def sections(results: dict, benchmarks: Optional[dict]) -> list:
+    """The report as ``(anchor, title, markdown body, claims or None)`` in reading order.
+
+    A claims section carries its claim records too, so the page can lay each out as a card;
+    its Markdown body is the same claims rendered by :func:`claim_markdown`.
+    """
+    from .conservation import render_markdown as conservation_markdown
+    from .reference import render_markdown as render_reference
+    from .retrograde import render_markdown as render_retrograde
+    from .sections import render as render_studies
+
+    out = [("summary", "Summary", "\n".join(_overview(results)), None)]
+    by_section = {}
+    for rec in results["claims"]:
+        by_section.setdefault(rec["section"], []).append(rec)
+    for title, recs in by_section.items():
+        body = [line for rec in recs for line in claim_markdown(rec)]
+        out.append((_slug(title), title, "\n".join(body), recs))
+    def guarded(title, render):
+        """A study's sections; where a failed job left its data missing, a line saying so instead."""
+        try:
+            return render()
+        except (KeyError, TypeError, IndexError, ValueError, AttributeError) as err:
+            if not results.get("failures"):
+                raise  # no job failed: a renderer bug, not missing data
+            return [(_slug(title), title, f"Not shown: a job this section reads failed ({type(err).__name__}: "
+                                          f"{text(err)}); see the list of failed jobs in the summary.", None)]
+
+    def conservation():
+        cons = conservation_markdown(results["conservation"], results["provenance"]).split("\n## Provenance")[0]
+        return [("conservation", "Conservation", cons.split("\n", 1)[1].lstrip("\n"), None)]
+
+    studies = results["studies"]
+    out += guarded("Conservation", conservation)
+    out += guarded("Stability thresholds", lambda: _split_h2(render_studies(studies)))
+    out += guarded("Reference trajectories", lambda: _split_h2("\n".join(
+        render_reference(studies["reference"]["index"], studies["reference"]["checks"]))))
+    out += guarded("Retrograde turn", lambda: _split_h2("\n".join(render_retrograde(studies["retrograde"]))))
+    out += _split_h2("\n".join(benchmarks_section(benchmarks)))
+    out.append(("provenance", "Provenance", "```\n" + json.dumps(results["provenance"], indent=2) + "\n```", None))
+    return out
+
+
+def render_markdown(results: dict, benchmarks: Optional[dict] = None) -> str:
+    """REPORT.md: every section of :func:`sections` under its ``##`` heading."""
+    lines = ["# Verification report", ""]
+    for anchor, title, body, _ in sections(results, benchmarks):
+        lines += [f'## <a id="{anchor}"></a>{title}', "", body.strip("\n"), ""]
     return "\n".join(lines)
+
+
+def _split_h2(markdown: str) -> list:
+    """``## `` sections of a rendered block as (anchor, title, body, None)."""
+    out = []
+    for chunk in re.split(r"^## ", markdown, flags=re.M)[1:]:
+        title, _, body = chunk.partition("\n")
+        out.append((_slug(title), title.strip(), body.strip("\n"), None))
+    return out
+
+
+def _slug(title: str) -> str:
+    return re.sub(r"[^a-z0-9]+", "-", title.lower()).strip("-")

@@ -18,7 +18,7 @@ def _params_cell(row: dict) -> str:
         return "printed: " + ", ".join(f"{k} = {v}" for k, v in ring_body.PRINTED.items())
     if name == "annular":
         return "annular (defaults)"
-    return str(row["params"] or "defaults")
+    return ", ".join(f"{k} = {v}" for k, v in row["params"].items()) if row["params"] else "defaults"
 
 
 def _threshold_lines(thresholds: list, captions: list) -> list:

@@ -8,6 +8,7 @@ results.json; :func:`render` turns that dict, and nothing else, into Markdown.
 from __future__ import annotations
 
 from ..claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
+from .markup import text
 
 SEVERITY_WORDS = {"result": "a number or conclusion is wrong", "typo": "the printed form is wrong, what follows is right",
                   "rounding": "a last printed digit"}
@@ -24,9 +25,9 @@ def _spindown(rows, model, family):
     return [r for r in rows if r["model"] == model and r["family"] == family]
 
 
-def build(results, studies: dict) -> dict:
-    """The summary as data.  ``results``: (Claim, Evaluation) pairs; ``studies``: the report's studies dict."""
-    verdict = {c.id: e.verdict for c, e in results}
+def build(claims: list, studies: dict) -> dict:
+    """The summary as data.  ``claims``: results.json's claim records; ``studies``: its studies dict."""
+    verdict = {c["id"]: c["verdict"] for c in claims}
     rolling = _threshold(studies["thresholds"], "disk", "diameter-spin")
     smooth = _threshold(studies["thresholds"], "sliding-disk", "diameter-spin")
     sd = studies["spindown"]
@@ -34,17 +35,14 @@ def build(results, studies: dict) -> dict:
     eq45_other = [(r["theta"], r["relative_error"]) for r in _spindown(sd, "disk", "zero-vertical-spin")]
     eq61 = {fam: [(r["theta"], r["relative_error"]) for r in _spindown(sd, "ring", fam)]
             for fam in ("zero-vertical-spin", "cm-at-rest")}
-    errata = []
-    for c, e in results:
-        if e.verdict == ERRATUM:
-            errata.append({"id": c.id, "source": c.source, "severity": c.severity, "quote": _first(c.quote),
-                           "correction": e.correction})
+    errata = [{"id": c["id"], "source": c["source"], "severity": c["severity"], "quote": _first(c["quote"]),
+               "correction": c["correction"]} for c in claims if c["verdict"] == ERRATUM]
     errata.sort(key=lambda x: SEVERITIES.index(x["severity"]))  # stable: paper order within a severity
-    qualified = [{"id": c.id, "source": c.source, "quote": _first(c.quote), "qualification": e.qualification}
-                 for c, e in results if e.verdict == QUALIFIED]
-    undecided = [{"id": c.id, "source": c.source, "quote": _first(c.quote),
-                  "measures": [f"{n}: {v}" for n, v in e.measures]}
-                 for c, e in results if e.verdict == NOT_CHECKABLE and c.undecided is not None]
+    qualified = [{"id": c["id"], "source": c["source"], "quote": _first(c["quote"]), "qualification": c["qualification"]}
+                 for c in claims if c["verdict"] == QUALIFIED]
+    undecided = [{"id": c["id"], "source": c["source"], "quote": _first(c["quote"]),
+                  "measures": [f"{m['measure']}: {m['value']}" for m in c.get("measures", ())]}
+                 for c in claims if c["verdict"] == NOT_CHECKABLE and c.get("undecided")]
     return {
         "olsson": {"rolling_rate": rolling["linear"], "rolling_form": rolling["closed_form"],
                    "smooth_rate": smooth["linear"], "smooth_form": smooth["closed_form"],
@@ -67,8 +65,6 @@ def render(s: dict) -> list:
     z61 = d["eq61"]["zero-vertical-spin"]
     c61 = d["eq61"]["cm-at-rest"]
     lines = [
-        "## Summary",
-        "",
         f"**Olsson or Eq. 41?** Both, each for its own contact. Rolling without slipping (a real table) is linearly "
         f"stable while {o['rolling_form']}: rate {o['rolling_rate']} s^-1 (Eq. 41, {o['eq41']}); a frictionless plane, "
         f"which is Olsson's zero horizontal force, needs {o['smooth_form']}: rate {float(o['smooth_rate']):.4f} s^-1 "
@@ -88,21 +84,18 @@ def render(s: dict) -> list:
         lines += ["**Errata, most serious first** (severity: " +
                   "; ".join(f"*{k}*: {v}" for k, v in SEVERITY_WORDS.items()) + "):", "",
                   "| severity | where | the paper prints | correction |", "|---|---|---|---|"]
-        lines += [f"| {e['severity']} | {e['source']} | {_cell(e['quote'])} | {_cell(e['correction'])} |"
+        lines += [f"| {e['severity']} | [{text(e['source'])}](#{e['id']}) | {text(e['quote'], table=True)} "
+                  f"| {text(e['correction'], table=True)} |"
                   for e in s["errata"]]
         lines.append("")
     if s["qualified"]:
         lines += ["**Qualified captions** -- the described behaviour is reproduced only through a finite or unstated "
                   "perturbation or one unstated choice, while what the caption implies in general (a threshold, a "
                   "sense) is wrong or holds only for that choice:", ""]
-        lines += [f"- {q['source']}: {q['qualification']}" for q in s["qualified"]]
+        lines += [f"- [{text(q['source'])}](#{q['id']}): {text(q['qualification'])}" for q in s["qualified"]]
         lines.append("")
     if s["undecided"]:
         lines += ["**Undecided captions** -- two independent measures disagree, so no verdict is given:", ""]
-        lines += [f"- {u['source']}: " + "; ".join(u["measures"]) for u in s["undecided"]]
+        lines += [f"- [{text(u['source'])}](#{u['id']}): " + text("; ".join(u["measures"])) for u in s["undecided"]]
         lines.append("")
     return lines
-
-
-def _cell(text) -> str:
-    return str(text).replace("|", "\\|").replace("\n", " ")

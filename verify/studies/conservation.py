@@ -21,9 +21,15 @@ PRECISIONS = ("double", "quad")
 T_END = "10"
 
 
-def conservation_rows(progress=None) -> list:
+def conservation_models() -> tuple:
+    """The models of the table, in its order."""
+    return tuple(MODEL_NAMES)
+
+
+def conservation_rows(progress=None, models=None) -> list:
+    """The table's rows for ``models`` (default: all, :func:`conservation_models`)."""
     rows = []
-    for name in MODEL_NAMES:
+    for name in models or conservation_models():
         for eq in sources(name):
             # The printed sources are the same equations (tests/test_derivation.py): quad once, on the derived ones.
             for prec in PRECISIONS if eq == "derived" else PRECISIONS[:1]:

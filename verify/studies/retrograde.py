@@ -87,8 +87,8 @@ class Study:
     sweeps: dict  # mechanism -> (spec, rows) of the mechanism's sweep (not the control), for its figures
 
 
-def run_study(directory=None, threads=None, progress=None) -> Study:
-    """Run both mechanisms and the controls (stores in ``directory``, a temporary folder by default)."""
+def run_study(directory=None, threads=None, progress=None, mechanisms=MECHANISMS) -> Study:
+    """Run the mechanisms (both by default) and their controls (stores in ``directory``, a temporary folder by default)."""
     say = progress or (lambda s: None)
     owned = None
     if directory is None:
@@ -96,7 +96,7 @@ def run_study(directory=None, threads=None, progress=None) -> Study:
         directory = owned.name
     try:
         out, sweeps = {}, {}
-        for m in MECHANISMS:
+        for m in mechanisms:
             spec = load(spec_path(m), store=str(Path(directory) / f"{m}.sqlite"))
             control = parse(control_text(m), f"{m} control", store=str(Path(directory) / f"{m}-control.sqlite"))
             results = {}

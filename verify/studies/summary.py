@@ -286,34 +286,42 @@ MAPS = (("disk", "diameter-spin"), ("sliding-disk", "diameter-spin"), ("disk", "
 
 
 def map_rows(progress=None) -> tuple:
-    """The report's stability maps (:data:`MAPS`) of 100 rates x 100 tilts (10 s each) by heyoka batch + ensemble.
+    """The report's stability maps (:data:`MAPS`): :func:`map_row` of each, as ``(rows, maps, timing)`` lists."""
+    rows, maps, timing = [], [], []
+    for model, motion in MAPS:
+        if progress:
+            progress(f"stability map {model} {motion} (10^4 trajectories)")
+        row, smap, wall = map_row(model, motion)
+        rows.append(row)
+        maps.append(smap)
+        timing.append(wall)
+    return rows, maps, timing
+
+
+def map_row(model: str, motion: str) -> tuple:
+    """One stability map of 100 rates x 100 tilts (10 s each) by heyoka batch + ensemble.
 
     The rates run from 0.5 to 1.5 x the linear threshold, the tilts from 1e-6 to 1e-1; the ring
-    is the paper's (printed parameters).  Returns ``(rows, maps, timing)``: one row per map for
+    is the paper's (printed parameters).  Returns ``(row, map, timing)``: the row for
     results.json (its figure's file name under ``figures/`` included), the
-    :class:`~verify.studies.maps.StabilityMap` of each row, for the figures, and the wall times.
+    :class:`~verify.studies.maps.StabilityMap`, for the figure, and the wall time.
     """
     import numpy as np
 
     from .maps import stability_map, switch_bracket
 
-    rows, maps, timing = [], [], []
-    for model, motion in MAPS:
-        if progress:
-            progress(f"stability map {model} {motion} (10^4 trajectories)")
-        params = dict(ring_body.parameter_set("printed")) if model == "ring" else None  # the paper's own ring
-        lin = float(threshold(model, motion, params).value)
-        smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100),
-                             params=params)
-        lo, hi = switch_bracket(smap)
-        rows.append({"model": model, "motion": motion, "params": params or {}, "figure": f"figures/map-{model}-{motion}.png",
-                     "trajectories": smap.n_trajectories,
-                     "t_end": smap.t_end, "linear_threshold": f"{lin:.12g}",
-                     "switch_at_tilt_1e-6": [f"{lo:.6g}", f"{hi:.6g}"]})
-        maps.append(smap)
-        timing.append({"model": model, "motion": motion, "trajectories": smap.n_trajectories,
-                       "wall_seconds": round(smap.wall_seconds, 2), "batch_size": smap.batch_size})
-    return rows, maps, timing
+    params = dict(ring_body.parameter_set("printed")) if model == "ring" else None  # the paper's own ring
+    lin = float(threshold(model, motion, params).value)
+    smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100),
+                         params=params)
+    lo, hi = switch_bracket(smap)
+    row = {"model": model, "motion": motion, "params": params or {}, "figure": f"figures/map-{model}-{motion}.png",
+           "trajectories": smap.n_trajectories,
+           "t_end": smap.t_end, "linear_threshold": f"{lin:.12g}",
+           "switch_at_tilt_1e-6": [f"{lo:.6g}", f"{hi:.6g}"]}
+    timing = {"model": model, "motion": motion, "trajectories": smap.n_trajectories,
+              "wall_seconds": round(smap.wall_seconds, 2), "batch_size": smap.batch_size}
+    return row, smap, timing
 
 
 def spindown_rows() -> list:

@@ -1,0 +1,186 @@
+"""The report's jobs: every computation behind a number or figure of the report, as a registry.
+
+A :class:`Job` names a function of this module (so a worker process can run it by name), its
+JSON-ready arguments and the modules it starts from (which, with their imports and data files,
+make its cache key: :mod:`.dependencies`).  Each job function returns a :class:`JobOutput`:
+JSON-ready ``data`` for results.json, the figures it draws (:class:`~.figures.Image`), and wall
+times, which go to timing.json only (results.json must be the same bytes on every run).
+
+The jobs are as fine as the work allows, so both cores stay busy and a change recomputes
+little: one per claim module, threshold case, stability map, conservation model, retrograde
+mechanism and quad reference case.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+#: Reference-check precisions; quad is one job per case (about 7 s each), the others one job each.
+REFERENCE_PRECISIONS = ("double", "long", "quad")
+
+
+@dataclass(frozen=True)
+class Job:
+    """One unit of the report's computation.
+
+    ``name`` is unique and path-like (``claims/disk``, ``reference/quad/disk-fig3-lhs``);
+    ``function`` a function of this module (or ``package.module:name``) called as ``function(*args)``; ``modules`` the
+    modules whose import closure the result depends on; ``files`` further data files it reads.
+    """
+
+    name: str
+    function: str
+    args: tuple = ()
+    modules: tuple = ()
+    files: tuple = ()
+
+
+@dataclass
+class JobOutput:
+    data: Any
+    images: list = field(default_factory=list)
+    timing: dict = field(default_factory=dict)
+
+
+def registry() -> list:
+    """Every job of the report, in the order the report presents their results."""
+    from ..claims import SECTION_MODULES
+    from ..reference.store import DIRECTORY, read_index
+    from ..studies.conservation import conservation_models
+    from ..studies.retrograde import MECHANISMS
+    from ..studies.summary import MAPS, THRESHOLD_CASES
+
+    jobs = [Job(f"claims/{m}", "claims_job", (m,), (f"verify.claims.{m}", "verify.report.claim_records",
+                                                   "verify.report.figures")) for m in SECTION_MODULES]
+    jobs += [Job(f"conservation/{m}", "conservation_job", (m,), ("verify.studies.conservation",))
+             for m in conservation_models()]
+    jobs += [Job(f"thresholds/{_case_name(*case)}", "threshold_job", case, ("verify.studies.summary",))
+             for case in THRESHOLD_CASES]
+    jobs += [Job(f"studies/{n}", f"{n}_job", (), ("verify.studies.summary",)) for n in ("captions", "spindown", "precision")]
+    jobs += [Job(f"maps/{model}-{motion}", "map_job", (model, motion),
+                 ("verify.studies.summary", "verify.report.study_figures")) for model, motion in MAPS]
+    jobs.append(Job("dissipation", "dissipation_job", (), ("verify.studies.dissipation", "verify.report.study_figures")))
+    jobs += [Job(f"retrograde/{m}", "retrograde_job", (m,), ("verify.studies.retrograde", "verify.report.retrograde"))
+             for m in MECHANISMS]
+    index = read_index()
+    index_file = str(DIRECTORY / "index.json")
+    for precision in REFERENCE_PRECISIONS:
+        groups = [[e] for e in index["cases"]] if precision == "quad" else [index["cases"]]
+        for group in groups:
+            label = group[0]["name"] if len(group) == 1 else "all"
+            jobs.append(Job(f"reference/{precision}/{label}", "reference_job", (precision, [e["name"] for e in group]),
+                            ("verify.reference",), (index_file, *(str(DIRECTORY / e["file"]) for e in group))))
+    return jobs
+
+
+def _case_name(model: str, motion: str, params: dict) -> str:
+    from models import ring as ring_body
+
+    if model.startswith("ring"):
+        tag = ring_body.parameter_set_name(params) or "custom"
+    else:
+        tag = "-".join(f"{k}{v}" for k, v in sorted(params.items())) or "defaults"
+    return f"{model}-{motion}-{tag}"
+
+
+def run(job: Job) -> JobOutput:
+    """Run one job in this process (``function``: a name in this module, or ``package.module:name``)."""
+    if ":" in job.function:
+        import importlib
+
+        module, _, name = job.function.partition(":")
+        return getattr(importlib.import_module(module), name)(*job.args)
+    return globals()[job.function](*job.args)
+
+
+# --- the job functions -----------------------------------------------------------------------
+
+def claims_job(module: str) -> JobOutput:
+    """Evaluate every claim of ``verify.claims.<module>``: their records and their figures."""
+    import importlib
+
+    from .claim_records import claim_record
+    from .figures import render
+
+    claims = importlib.import_module(f"verify.claims.{module}").claims()
+    records, images, timing = [], [], {}
+    for claim in claims:
+        t0 = time.monotonic()
+        ev = claim.evaluate()
+        figs = [_image(render(fig), f"{fig.name}.png", fig.title) for fig in ev.figures]
+        records.append(claim_record(claim, ev, figs))
+        images += figs
+        timing[claim.id] = round(time.monotonic() - t0, 2)
+    return JobOutput(records, images, {"claims": timing})
+
+
+def conservation_job(model: str) -> JobOutput:
+    from ..studies.conservation import conservation_rows
+
+    return JobOutput(conservation_rows(models=(model,)))
+
+
+def threshold_job(model: str, motion: str, params: dict) -> JobOutput:
+    from ..studies.summary import threshold_case_rows
+
+    return JobOutput(threshold_case_rows(model, motion, params))
+
+
+def captions_job() -> JobOutput:
+    from ..studies.summary import caption_rows
+
+    return JobOutput(caption_rows())
+
+
+def spindown_job() -> JobOutput:
+    from ..studies.summary import spindown_rows
+
+    return JobOutput(spindown_rows())
+
+
+def precision_job() -> JobOutput:
+    from ..studies.summary import precision_rows
+
+    return JobOutput(precision_rows())
+
+
+def map_job(model: str, motion: str) -> JobOutput:
+    from ..studies.summary import map_row
+    from .study_figures import render_map
+
+    row, smap, timing = map_row(model, motion)
+    return JobOutput(row, [_image(render_map(smap), row["figure"].removeprefix("figures/"), "stability map")], timing)
+
+
+def dissipation_job() -> JobOutput:
+    from ..studies.dissipation import dissipation_study, to_record
+    from .study_figures import render_dissipation
+
+    laws = dissipation_study()
+    return JobOutput([to_record(s) for s in laws], [_image(render_dissipation(laws), "dissipation.png", "dissipation")],
+                     {"laws": {s.law: round(s.run.wall_seconds, 2) for s in laws}})
+
+
+def retrograde_job(mechanism: str) -> JobOutput:
+    from ..studies.retrograde import run_study
+    from .retrograde import figures
+
+    study = run_study(mechanisms=(mechanism,))
+    summary = study.summaries[mechanism]
+    seconds = summary.pop("seconds")  # wall time: timing.json only
+    images = [_image(data, name, name) for name, data in figures(mechanism, *study.sweeps[mechanism]).items()]
+    return JobOutput(summary, images, {"sweep_seconds": seconds})
+
+
+def reference_job(precision: str, names: list) -> JobOutput:
+    from ..reference import check_set
+
+    return JobOutput([c.to_record() for c in check_set(precision, names)])
+
+
+def _image(data, filename, alt):
+    """TEMPORARY until the renderers return :class:`~.figures.Image` themselves."""
+    from .figures import Image
+
+    return data if isinstance(data, Image) else Image(filename, data, alt)

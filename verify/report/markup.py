@@ -1,0 +1,49 @@
+"""Plain text into Markdown that shows exactly that text, math kept for the math renderer.
+
+The claims' and the paper's texts are plain text with math in ``$...$`` (LaTeX); :func:`text`
+escapes what Markdown would read as markup (``*``, ``_``, ``[``, ``<``, ...) outside the math, so
+a product ``a*b`` or a ``theta_0`` never becomes emphasis or a link.
+"""
+from __future__ import annotations
+
+import re
+
+_MATH = re.compile(r"(\$\$.+?\$\$|\$[^$]+?\$)", re.S)
+_SPECIAL = re.compile(r"([\\`*\[\]<>#$])")
+_LONE_UNDERSCORE = re.compile(r"(?<![0-9A-Za-z])_|_(?![0-9A-Za-z])")
+
+
+def text(s, table: bool = False) -> str:
+    """``s`` as Markdown that shows exactly ``s``: markup characters escaped outside ``$...$`` math.
+
+    ``table``: also escape ``|`` (a table cell).  Newlines become spaces.
+    """
+    out = []
+    for i, part in enumerate(_MATH.split(str(s).replace("\n", " "))):
+        if i % 2:  # math: passed through for the math renderer
+            out.append(part)
+            continue
+        part = _SPECIAL.sub(r"\\\1", part)
+        part = _LONE_UNDERSCORE.sub(r"\\_", part)
+        if table:
+            part = part.replace("|", "\\|")
+        out.append(part)
+    return "".join(out)
+
+
+_BARE_TEX = re.compile(r"\\(?:frac|dot|ddot|sqrt|theta|phi|psi|omega|left|right|hat|vec|mathbf|cos|sin|tan|cdot)\b")
+
+
+def quote(fragments) -> list:
+    """The paper's words as blockquote lines; a fragment that is a bare LaTeX equation (the paper's
+    display math, which the quotation keeps without its delimiters) is shown typeset."""
+    lines = []
+    for frag in fragments:
+        if "$" not in frag and _BARE_TEX.search(frag):
+            lines.append(f"> $${frag}$$")
+        else:
+            lines.append("> " + text(frag))
+        lines.append(">")
+    return lines[:-1]
+
+

@@ -1,0 +1,103 @@
+"""report.html: the report as one self-contained page, rendered from results.json by kept libraries.
+
+Markdown goes through markdown-it-py (CommonMark + tables), math (``$...$``, ``$$...$$``) through
+the dollarmath plugin into MathML by latex2mathml (browsers render it natively, offline), and the
+page is a Jinja2 template (``templates/report.html.j2``): a table of contents with an anchor for
+every section and every claim (``report.html#eq-61``), the summary first, each claim as a card
+with the paper's words beside the verdict and the evidence, figures inlined with their alt text.
+"""
+from __future__ import annotations
+
+import base64
+import html
+import mimetypes
+from functools import lru_cache
+from typing import Optional
+
+import jinja2
+from latex2mathml.converter import convert as latex_to_mathml
+from markdown_it import MarkdownIt
+from mdit_py_plugins.dollarmath import dollarmath_plugin
+
+from .markdown import sections, verdict_label
+from .markup import quote, text
+from .summary import SEVERITY_WORDS
+
+
+def _math(content: str, options: dict) -> str:
+    """MathML for one formula; the TeX shown as code where latex2mathml cannot read it."""
+    try:
+        return latex_to_mathml(content, display="block" if options.get("display_mode") else "inline")
+    except Exception:  # noqa: BLE001 -- a formula it cannot read is shown, not lost
+        return f'<code class="tex">{html.escape(content)}</code>'
+
+
+class _Renderer:
+    """markdown-it configured for the report, with figures resolved to inline data."""
+
+    def __init__(self, images: dict, alts: dict):
+        self.images, self.alts = images, alts
+        md = MarkdownIt("commonmark", {"html": True}).enable("table")
+        dollarmath_plugin(md, double_inline=True, allow_digits=False, renderer=_math)
+        md.add_render_rule("image", lambda renderer, tokens, idx, options, env: self._image(renderer, tokens, idx,
+                                                                                            options, env))
+        self.md = md
+
+    def _image(self, renderer, tokens, idx, options, env):
+        token = tokens[idx]
+        src = str(token.attrGet("src") or "")
+        name = src.rsplit("/", 1)[-1]
+        alt = renderer.renderInlineAsText(token.children or [], options, env) or self.alts.get(name, "")
+        if name not in self.images:
+            return f'<span class="missing-figure">figure {html.escape(name)} is missing</span>'
+        return f'<img src="{data_uri(name, self.images[name])}" alt="{html.escape(alt, quote=True)}">'
+
+    def block(self, markdown: str) -> str:
+        return self.md.render(markdown)
+
+    def inline(self, markdown: str) -> str:
+        return self.md.renderInline(markdown)
+
+
+def data_uri(name: str, data: bytes) -> str:
+    mime = mimetypes.guess_type(name)[0] or "application/octet-stream"
+    return f"data:{mime};base64,{base64.b64encode(data).decode()}"
+
+
+@lru_cache(maxsize=1)
+def _environment() -> jinja2.Environment:
+    env = jinja2.Environment(loader=jinja2.PackageLoader("verify.report", "templates"),
+                             autoescape=jinja2.select_autoescape(["html", "j2"]), undefined=jinja2.StrictUndefined,
+                             trim_blocks=True, lstrip_blocks=True)
+    return env
+
+
+def render_html(results: dict, images: dict, benchmarks: Optional[dict] = None) -> str:
+    """The page.  ``images``: file name -> bytes of every figure results.json names."""
+    alts = {f["file"]: f["alt"] for f in results.get("figures", ())}
+    r = _Renderer(images, alts)
+    blocks = []
+    for anchor, title, body, claims in sections(results, benchmarks):
+        if claims is None:
+            blocks.append({"anchor": anchor, "title": title, "html": r.block(body), "claims": None})
+            continue
+        cards = []
+        for rec in claims:
+            fields = [("read as", rec.get("reading")), ("independent route", rec["expected"]),
+                      ("the paper", rec["observed"]), ("corrected", rec.get("correction")),
+                      ("qualification", rec.get("qualification")),
+                      ("measures", "; ".join(f"{m['measure']}: {m['value']}" for m in rec.get("measures", ())) or None),
+                      ("detail", rec["detail"]), ("method", f"{rec['method']}; tolerance: {rec['tolerance']}")]
+            cards.append({
+                "id": rec["id"], "source": rec["source"], "verdict": rec["verdict"], "label": verdict_label(rec),
+                "severity_words": SEVERITY_WORDS.get(rec.get("severity"), ""),
+                "quote": r.block("\n".join(quote(rec["quote"]))),
+                "fields": [(name, r.inline(text(value))) for name, value in fields if value],
+                "figures": [{"src": data_uri(f["file"], images[f["file"]]) if f["file"] in images else None,
+                             "alt": f["alt"], "title": f["title"], "file": f["file"]} for f in rec.get("figures", ())],
+            })
+        blocks.append({"anchor": anchor, "title": title, "html": None, "claims": cards})
+    prov = results["provenance"]
+    return _environment().get_template("report.html.j2").render(
+        blocks=blocks, provenance=prov, failures=results.get("failures", []),
+        commit=(prov.get("source_commit") or {}).get("commit") or "unknown")
