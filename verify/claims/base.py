@@ -191,11 +191,12 @@ def definition(id, source, section, statement, reason, quote="", reading=None) -
 def rows_identity(id, source, section, statement, printed, derived, body: str, quote="", reading=None) -> Claim:
     """A printed vector equation (LHS - RHS, 1-2-3 components) against the derived rows of ``body``."""
     def check():
-        from .vectors import same, show
+        from .mathtext import tex
+        from .vectors import same
         import sympy as sp
 
         p, d = printed(), derived()
         ok = same(p, d)
         return decide(ok, f"derived Newton-Euler rows of the {body} (models/rolling.py)", f"{source} as printed, LHS - RHS",
-                      "identical, row by row" if ok else f"printed - derived = {show(sp.simplify(p - d).T)}")
+                      "identical, row by row" if ok else f"printed - derived = {tex(sp.simplify(p - d))}")
     return Claim(id, source, section, statement, check, quote=quote, reading=reading)

@@ -19,9 +19,10 @@ from models.symbols import (
     g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot, time_derivative,
 )
 
+from .mathtext import equation, latex, tex
 from .base import ROUNDING, TYPO, Claim, decide, definition, rows_identity
 from .vectors import (
-    E1, E2, E3, c, euler_angles_omega, omega_body, omega_body_dot, omega_frame, s, same, show,
+    E1, E2, E3, c, euler_angles_omega, omega_body, omega_body_dot, omega_frame, s, same,
     to_inertial, vertical_in_frame,
 )
 
@@ -75,18 +76,20 @@ def _check_eq4_bodies():
     printed_k = {"disk": sp.Rational(1, 4), "hoop": sp.Rational(1, 2)}
     ok = all(same(got[n], printed[n]) and same(2 * got[n][0, 0], got[n][2, 2]) and same(got[n][0, 0], printed_k[n])
              for n in got)
-    return decide(ok, {n: show(mat) for n, mat in got.items()}, {n: show(mat) for n, mat in printed.items()},
-                  "moments of a uniform disk and hoop by integration over the body, in units of m R^2; "
-                  "2 I1 = I3 for both and I1 = k m R^2 with k = 1/4 (disk), 1/2 (hoop)")
+    return decide(ok, "; ".join(f"{n}: {tex(mat)}" for n, mat in got.items()),
+                  "; ".join(f"{n}: {tex(mat)}" for n, mat in printed.items()),
+                  "moments of a uniform disk and hoop by integration over the body, in units of $m R^2$; "
+                  "$2 I_1 = I_3$ for both and $I_1 = k m R^2$ with $k = 1/4$ (disk), $1/2$ (hoop)")
 
 
 def _check_eq4_general():
     got = _inertia_integrals()["disk"]
     printed_entry = sp.Integer(1)  # the printed matrix has a 1 in row 1, column 2
     ok = same(got[0, 1], printed_entry)
-    return decide(ok, f"I_12 = {got[0, 1]} (product of inertia of a body symmetric about e3)", "I_12 = 1",
+    return decide(ok, f"{equation(sp.Symbol('I_12'), got[0, 1])} (product of inertia of a body symmetric about "
+                      r"$\mathbf{e}_3$)", "$I_{12} = 1$",
                   "the printed general matrix has a stray 1 in row 1, column 2",
-                  correction="I = diag(I1, I1, I3): ((I1, 0, 0), (0, I1, 0), (0, 0, I3))")
+                  correction=equation(sp.Symbol("I"), _I()))
 
 
 # --- Eqs. 7-12: the vector equations -------------------------------------------------------
@@ -101,8 +104,9 @@ def _check_eq7():
     a_123 = sp.Matrix([a_inertial.dot(e) for e in (e1, e2, e3)])
     printed = -wd.cross(RPK) + Om.cross(v)
     ok = same(a_123, printed)
-    return decide(ok, "d/dt of the inertial components of v_C = -w x r_P, projected on e1, e2, e3 (R kept)",
-                  "-w' x r_P + Omega x v_C", "the inertial acceleration of C for a contact vector fixed in the 1-2-3 frame")
+    return decide(ok, r"$\frac{d}{dt}$ of the inertial components of $v_C = -\omega \times r_P$, projected on "
+                      r"$\mathbf{e}_1, \mathbf{e}_2, \mathbf{e}_3$ ($R$ kept)",
+                  r"$-\dot{\omega} \times r_P + \Omega \times v_C$", "the inertial acceleration of C for a contact vector fixed in the 1-2-3 frame")
 
 
 def _eq8():
@@ -137,13 +141,15 @@ def _eq12():
 def _check_eq14():
     _, _, Om = euler_angles_omega()
     printed = sp.Matrix([thetadot, phidot * s, phidot * c])
-    return decide(same(Om, printed), show(Om.T), show(printed.T), "frame rate from Rz(phi) Rx(theta)")
+    return decide(same(Om, printed), equation(sp.Symbol("Omega"), Om), equation(sp.Symbol("Omega"), printed),
+                  r"frame rate from $R_z(\phi) R_x(\theta)$")
 
 
 def _check_eq16():
     _, w, _ = euler_angles_omega()
     printed = sp.Matrix([thetadot, phidot * s, phidot * c + psidot])
-    return decide(same(w, printed), show(w.T), show(printed.T), "body rate from Rz(phi) Rx(theta) Rz(psi)")
+    return decide(same(w, printed), equation(sp.Symbol("omega"), w), equation(sp.Symbol("omega"), printed),
+                  r"body rate from $R_z(\phi) R_x(\theta) R_z(\psi)$")
 
 
 def _check_fig1():
@@ -160,10 +166,12 @@ def _check_fig1():
     v = -w.cross(RPK)
     trailing = same(v, -R * psidot * E1)
     ok = horizontal and lowest and trailing
-    return decide(ok, "e1 horizontal; P = C - R e2 is the lowest point of the rim (0 < theta < pi), so e2 points from P "
-                      f"to C; rolling with phidot = thetadot = 0 gives v_C = {show(v.T)} (along -e1 for psidot > 0)",
-                  "1 parallel to the plane and trailing if psidot > 0; 2 away from P",
-                  "from the rotation matrices and v_C = -w x r_P")
+    return decide(ok, r"$\mathbf{e}_1$ horizontal; $P = C - R \mathbf{e}_2$ is the lowest point of the rim "
+                      r"($0 < \theta < \pi$), so $\mathbf{e}_2$ points from $P$ to $C$; rolling with "
+                      rf"$\dot{{\phi}} = \dot{{\theta}} = 0$ gives {equation(sp.Symbol('v_C'), v)} "
+                      r"(along $-\mathbf{e}_1$ for $\dot{\psi} > 0$)",
+                  r"1 parallel to the plane and trailing if $\dot{\psi} > 0$; 2 away from $P$",
+                  r"from the rotation matrices and $v_C = -\omega \times r_P$")
 
 
 # --- Eqs. 17-24 ---------------------------------------------------------------------------
@@ -200,8 +208,9 @@ def _check_knife_edge():
     straight, diameter = rhs0.subs(phidot, 0), rhs0.subs(psidot, 0)
     still = lhs.subs(constant_rates).subs(upright)  # constant rates: the lhs vanishes too, so both are solutions
     ok = same(straight, sp.zeros(3, 1)) and same(diameter, sp.zeros(3, 1)) and same(still, sp.zeros(3, 1))
-    return decide(ok, f"printed rhs of Eq. 18 at theta = pi/2, thetadot = 0: phidot = 0 gives {show(straight.T)}, "
-                      f"psidot = 0 gives {show(diameter.T)}; the lhs at constant rates is {show(still.T)}",
+    return decide(ok, r"printed rhs of Eq. 18 at $\theta = \pi/2$, $\dot{\theta} = 0$: "
+                      rf"$\dot{{\phi}} = 0$ gives {tex(straight)}, $\dot{{\psi}} = 0$ gives {tex(diameter)}; "
+                      f"the lhs at constant rates is {tex(still)}",
                   "the rhs of Eq. 18 is zero", "both motions solve Eq. 18")
 
 
@@ -211,7 +220,8 @@ def _check_eq19():
     alpha = theta - sp.pi / 2
     printed = I3 * (psidot + phidot * c) * sp.cos(alpha) + I1 * phidot * s * sp.sin(alpha)
     ok = same(L.dot(HORIZONTAL_AXLE), printed) and same(L.dot(vertical_in_frame().cross(HORIZONTAL_AXLE)), 0)
-    return decide(ok, "L . (sin(theta) e3 - cos(theta) e2) with thetadot = 0 (L has no other horizontal part)", show(printed),
+    return decide(ok, r"$L \cdot (\sin\theta \, \mathbf{e}_3 - \cos\theta \, \mathbf{e}_2)$ with $\dot{\theta} = 0$ "
+                      "($L$ has no other horizontal part)", equation(sp.Symbol("L_perp"), printed),
                   "the horizontal component of L = I.w when theta is constant, along the horizontal projection of the axle")
 
 
@@ -240,11 +250,13 @@ def _check_eq20():
     vP = -(omega_body() - omega_frame()).cross(RPK)
     path = same(vP.dot(vP), R**2 * psidot**2)
     ok = out_of_page and torque_ok and normal and centripetal and path
-    return decide(ok, f"r_P x m (a_C + g Z) with psidot = rho phidot / R: {show(sp.simplify(torque.subs(on_circle)).T)}; "
-                      "dL/dt = Omega x L = L_perp phidot e1",
-                  "Gamma = m g R sin(alpha) - m (rho - R sin(alpha)) phidot^2 R cos(alpha), out of the page",
-                  f"alpha = theta - pi/2; steps: dL/dt along e1 {out_of_page}, torque {torque_ok}, N = m g {normal}, "
-                  f"centripetal m (rho - R sin(alpha)) phidot^2 {centripetal}, path lengths R psidot = rho phidot {path}")
+    return decide(ok, r"$r_P \times m (a_C + g Z)$ with $\dot{\psi} = \rho \dot{\phi} / R$: "
+                      f"{tex(sp.simplify(torque.subs(on_circle)))}; "
+                      r"$\frac{dL}{dt} = \Omega \times L = L_\perp \dot{\phi} \, \mathbf{e}_1$",
+                  r"$\Gamma = m g R \sin\alpha - m (\rho - R \sin\alpha) \dot{\phi}^2 R \cos\alpha$, out of the page",
+                  rf"$\alpha = \theta - \pi/2$; steps: $\frac{{dL}}{{dt}}$ along $\mathbf{{e}}_1$ {out_of_page}, "
+                  rf"torque {torque_ok}, $N = m g$ {normal}, centripetal $m (\rho - R \sin\alpha) \dot{{\phi}}^2$ "
+                  rf"{centripetal}, path lengths $R \dot{{\psi}} = \rho \dot{{\phi}}$ {path}")
 
 
 def _check_eq21():
@@ -258,10 +270,10 @@ def _check_eq21():
     line2 = (-g * c - (psidot + phidot * c) * phidot * s) - (I3 * (psidot + phidot * c) - I1 * phidot * c) * phidot * s
     line3 = -g * c - (psidot * (1 + I3) + (1 + I3 - I1) * phidot * c) * phidot * s
     steps = (same(line1.subs(rho, R * psidot / phidot), -m * row1_kept), same(line2, -row1), same(line3, -row1))
-    return decide(all(steps), "derived row 1 at theta = const: " + show(sp.simplify(-row1)) + " = 0 (scaled), and "
-                  "m times the same row with R kept", "Eq. 21, three lines",
-                  "line 1 (m, R kept, psidot = rho phidot / R) = m x derived row; lines 2 and 3 = derived row "
-                  f"(scaled); steps {steps}; the row is component 1 of Eq. 17 with w1' = 0")
+    return decide(all(steps), "derived row 1 at $\\theta$ = const: " + equation(sp.simplify(-row1), 0) + " (scaled), and "
+                  "$m$ times the same row with $R$ kept", "Eq. 21, three lines",
+                  r"line 1 ($m$, $R$ kept, $\dot{\psi} = \rho \dot{\phi} / R$) = $m$ × derived row; lines 2 and 3 = "
+                  rf"derived row (scaled); steps {steps}; the row is component 1 of Eq. 17 with $\dot{{\omega}}_1 = 0$")
 
 
 def _check_eq22_24():
@@ -276,11 +288,12 @@ def _check_eq22_24():
     eq24 = -g * c / (I1 + 1)
     steps = (same(eq22.subs(alpha, theta - sp.pi / 2), acc[0]), same(eq23, acc[0]), same(eq24, acc_scaled))
     ok = stays and all(steps)
-    return decide(ok, f"derived thetaddot with phidot = psidot = 0 (m, R kept): {show(sp.simplify(acc[0]))}; "
-                      f"scaled: {show(acc_scaled)}",
-                  "(I1 + mR^2) alpha'' = mgR sin(alpha); (I1 + mR^2) w1' = -mgR cos(theta); (I1 + 1) w1' = -g cos(theta)",
-                  f"alpha = theta - pi/2 so sin(alpha) = -cos(theta); phiddot = psiddot = 0 there ({stays}); "
-                  f"Eqs. 22, 23, 24: {steps}")
+    return decide(ok, r"derived $\ddot{\theta}$ with $\dot{\phi} = \dot{\psi} = 0$ ($m$, $R$ kept): "
+                      f"{equation(thetaddot, sp.simplify(acc[0]))}; scaled: {equation(thetaddot, acc_scaled)}",
+                  r"$(I_1 + m R^2) \ddot{\alpha} = m g R \sin\alpha$; $(I_1 + m R^2) \dot{\omega}_1 = -m g R \cos\theta$; "
+                  r"$(I_1 + 1) \dot{\omega}_1 = -g \cos\theta$",
+                  r"$\alpha = \theta - \pi/2$ so $\sin\alpha = -\cos\theta$; $\ddot{\phi} = \ddot{\psi} = 0$ there "
+                  f"({stays}); Eqs. 22, 23, 24: {steps}")
 
 
 # --- Eqs. 30-33: straight-line rolling -----------------------------------------------------
@@ -309,7 +322,7 @@ def _straight_subs():
 def _check_eq30():
     lin = _linearised("straight")
     printed = sp.Matrix([(k + 1) * add - (-psi0 * (2 * k + 1) * p + g * a), k * pd - 2 * k * psi0 * ad, (2 * k + 1) * bd])
-    return decide(same(lin, printed), show(lin.T), show(printed.T), "first order in the deviation of the derived rows")
+    return decide(same(lin, printed), tex(lin), tex(printed), "first order in the deviation of the derived rows")
 
 
 def _check_eq31():
@@ -317,8 +330,9 @@ def _check_eq31():
     integrable = same(lin[1], k * (pd - 2 * psi0 * ad))  # d/dt (k (phidot - 2 psidot_0 alpha)) = 0
     got = sp.solve(lin[0].subs(p, 2 * psi0 * a), add)[0] * (k + 1)
     printed = -(2 * (2 * k + 1) * psi0**2 - g) * a
-    return decide(integrable and same(got, printed), show(got), show(printed),
-                  "derived linear row 1 with phidot = 2 psidot_0 alpha (derived linear row 2 integrated, constant 0)")
+    return decide(integrable and same(got, printed), equation((k + 1) * add, got), equation((k + 1) * add, printed),
+                  r"derived linear row 1 with $\dot{\phi} = 2 \dot{\psi}_0 \alpha$ (derived linear row 2 integrated, "
+                  "constant 0)")
 
 
 def _jacobian_threshold(motion, model_acc=None):
@@ -343,8 +357,8 @@ def _jacobian_threshold(motion, model_acc=None):
 def _check_eq32():
     poly, crit = _jacobian_threshold("straight")
     printed = g / (2 * (2 * k + 1))
-    return decide(same(crit, printed), f"characteristic polynomial {show(poly)}; threshold psidot_0^2 = {show(crit)}",
-                  f"psidot_0^2 > {show(printed)}", "eigenvalues of the linearised derived equations (not Eq. 31)")
+    return decide(same(crit, printed), f"characteristic polynomial {tex(poly)}; threshold {equation(psi0**2, crit)}",
+                  tex(sp.StrictGreaterThan(psi0**2, printed)), "eigenvalues of the linearised derived equations (not Eq. 31)")
 
 
 def _check_eq33():
@@ -354,8 +368,8 @@ def _check_eq33():
     speed2 = sp.simplify(v.dot(v))  # R^2 psidot_0^2
     threshold = sp.simplify(speed2.subs(psi0**2, crit.subs(g, g / R)))  # the scaled g is g/R
     printed = g * R / (2 * (2 * k + 1))
-    return decide(same(threshold, printed), f"|v_C|^2 = {show(speed2)}; at the threshold of Eq. 32 (g/R for g): "
-                  f"v^2 = {show(threshold)}", "v^2 > g R / (2 (2k + 1))",
+    return decide(same(threshold, printed), rf"$\lvert v_C \rvert^2 = {latex(speed2)}$; at the threshold of Eq. 32 "
+                  rf"($g/R$ for $g$): $v^2 = {latex(threshold)}$", r"$v^2 > g R / (2 (2k + 1))$",
                   "eigenvalue threshold with dimensions restored, v from the rolling condition with R kept")
 
 
@@ -370,7 +384,7 @@ def _check_eq39():
     lin = _linearised("diameter")
     printed = sp.Matrix([(k + 1) * add - (-(q * (2 * k + 1) - phi0 * (k + 1) * a) * phi0 + g * a),
                          k * bd, (2 * k + 1) * (qd - phi0 * ad) - ad * phi0])
-    return decide(same(lin, printed), show(lin.T), show(printed.T), "first order in the deviation of the derived rows")
+    return decide(same(lin, printed), tex(lin), tex(printed), "first order in the deviation of the derived rows")
 
 
 def _check_eq40():
@@ -380,17 +394,18 @@ def _check_eq40():
     q_of_a = 2 * (k + 1) * phi0 * a / (2 * k + 1)  # integrated with the constant 0, as in the paper
     got = sp.factor(sp.solve(lin[0].subs(q, q_of_a), add)[0] * (k + 1))
     printed = -((k + 1) * psi0**2 - g) * a
-    return decide(integrable and same(got, printed), show(got), show(printed),
-                  "derived linear row 1 with (2k + 1) psidot = 2 (k + 1) phidot_0 alpha (derived linear row 3 integrated; "
-                  f"that intermediate step holds: {integrable}); psidot_0 is not a quantity of this motion",
-                  correction="(k + 1) alpha'' = -((k + 1) phidot_0^2 - g) alpha  (phidot_0, not psidot_0)")
+    return decide(integrable and same(got, printed), equation((k + 1) * add, got), equation((k + 1) * add, printed),
+                  r"derived linear row 1 with $(2k + 1) \dot{\psi} = 2 (k + 1) \dot{\phi}_0 \alpha$ (derived linear row 3 "
+                  rf"integrated; that intermediate step holds: {integrable}); $\dot{{\psi}}_0$ is not a quantity of this motion",
+                  correction=r"$(k + 1) \ddot{\alpha} = -\left((k + 1) \dot{\phi}_0^2 - g\right) \alpha$ "
+                             r"($\dot{\phi}_0$, not $\dot{\psi}_0$)")
 
 
 def _check_eq41():
     poly, crit = _jacobian_threshold("diameter")
     printed = g / (k + 1)
-    return decide(same(crit, printed), f"characteristic polynomial {show(poly)}; threshold phidot_0^2 = {show(crit)}",
-                  f"phidot_0^2 > {show(printed)}", "eigenvalues of the linearised rolling equations")
+    return decide(same(crit, printed), f"characteristic polynomial {tex(poly)}; threshold {equation(phi0**2, crit)}",
+                  tex(sp.StrictGreaterThan(phi0**2, printed)), "eigenvalues of the linearised rolling equations")
 
 
 def _check_footnote2():
@@ -399,10 +414,11 @@ def _check_footnote2():
     acc = [e.subs(kk, k) for e in sliding_disk.model().accelerations]
     poly, crit = _jacobian_threshold("diameter", acc)
     printed = g / k  # g/(k R) with the scaled g <- g/R
-    return decide(same(crit, printed), f"smooth plane: threshold phidot_0^2 = {show(crit)} (characteristic polynomial {show(poly)})",
-                  "Olsson: phidot_0^2 > g/(k R) with zero horizontal contact force",
-                  "the zero horizontal force is a frictionless contact; its threshold g/(kR) differs from the rolling "
-                  "g/((k+1)R) of Eq. 41, so the assumption is what separates the two results")
+    return decide(same(crit, printed), f"smooth plane: threshold {equation(phi0**2, crit)} (characteristic polynomial "
+                  f"{tex(poly)})",
+                  r"Olsson: $\dot{\phi}_0^2 > g/(k R)$ with zero horizontal contact force",
+                  r"the zero horizontal force is a frictionless contact; its threshold $g/(k R)$ differs from the rolling "
+                  r"$g/((k+1) R)$ of Eq. 41, so the assumption is what separates the two results")
 
 
 # --- Eqs. 42-46: spin-down and energy -------------------------------------------------
@@ -414,7 +430,7 @@ def _check_eq42():
         k * phiddot * s,
         (2 * k + 1) * (psiddot + phiddot * c),
     ])
-    return decide(same(rows, printed), show(rows.T), show(printed.T), "derived rows with thetadot = 0")
+    return decide(same(rows, printed), tex(rows), tex(printed), r"derived rows with $\dot{\theta} = 0$")
 
 
 def _check_eq43_44():
@@ -423,8 +439,9 @@ def _check_eq43_44():
     printed43 = -(-(2 * k + 1) + (k + 1)) * phidot**2 * c * s - g * c
     printed44 = k * phidot**2 * s - g
     ok = same(got, printed43) and same(got / c, printed44)
-    return decide(ok, show(sp.factor(got)), f"Eq. 43: {show(printed43)}; Eq. 44: {show(printed44)}",
-                  "derived row 1 at thetadot = 0 with psidot = -phidot cos(theta); Eq. 44 is Eq. 43 divided by cos(theta)")
+    return decide(ok, tex(sp.factor(got)), f"Eq. 43: {tex(printed43)}; Eq. 44: {tex(printed44)}",
+                  r"derived row 1 at $\dot{\theta} = 0$ with $\dot{\psi} = -\dot{\phi} \cos\theta$; Eq. 44 is Eq. 43 "
+                  r"divided by $\cos\theta$")
 
 
 def _check_eq45():
@@ -432,23 +449,28 @@ def _check_eq45():
     rate = sp.sqrt(g / (k * s))
     state = {thetadot: 0, phidot: rate, psidot: -rate * c}
     ok = all(same(e.subs(state), 0) for e in acc)
-    return decide(ok, "thetaddot = phiddot = psiddot = 0 identically on phidot = sqrt(g/(k sin)), psidot = -phidot cos",
-                  "phidot = sqrt(g/(k sin(theta)))", "exact (not asymptotic) on the family omega3 = 0, on which the centre of mass is at rest")
+    return decide(ok, r"$\ddot{\theta} = \ddot{\phi} = \ddot{\psi} = 0$ identically on "
+                      r"$\dot{\phi} = \sqrt{g/(k \sin\theta)}$, $\dot{\psi} = -\dot{\phi} \cos\theta$",
+                  r"$\dot{\phi} = \sqrt{g/(k \sin\theta)}$",
+                  r"exact (not asymptotic) on the family $\omega_3 = 0$, on which the centre of mass is at rest")
 
 
 def _check_vertical_spin():
     w = omega_body()
     got = sp.simplify(w.dot(vertical_in_frame()))
-    return decide(same(got, phidot + psidot * c), show(got), "phidot + psidot cos(theta)", "omega . Z")
+    return decide(same(got, phidot + psidot * c), tex(got), r"$\dot{\phi} + \dot{\psi} \cos\theta$",
+                  r"$\omega \cdot Z$")
 
 
 def _check_vcm_text():
     w = omega_body().subs(thetadot, 0)
     v = -w.cross(RPK)
     printed = R * (psidot + phidot * c) * E1
-    return decide(same(v, printed), f"v_CM = {show(v.T)} in (e1, e2, e3)", "v_CM = R (psidot + phidot cos(theta)) e1",
-                  "v_C = -w x r_P with thetadot = 0; the magnitude, which the text's argument uses, is right",
-                  correction="v_CM = -R (psidot + phidot cos(theta)) e1")
+    return decide(same(v, printed), f"{equation(sp.Symbol('v_CM'), v)} in $(\\mathbf{{e}}_1, \\mathbf{{e}}_2, \\mathbf{{e}}_3)$",
+                  r"$v_{CM} = R (\dot{\psi} + \dot{\phi} \cos\theta) \, \mathbf{e}_1$",
+                  r"$v_C = -\omega \times r_P$ with $\dot{\theta} = 0$; the magnitude, which the text's argument uses, "
+                  "is right",
+                  correction=r"$v_{CM} = -R (\dot{\psi} + \dot{\phi} \cos\theta) \, \mathbf{e}_1$")
 
 
 def _check_eq46():
@@ -465,9 +487,12 @@ def _check_eq46():
         same((-time_derivative(m * g * height) / (m * R**2)).subs(g, g * R), -g * c * thetadot)  # g <- g/R
     power = sp.simplify(sp.expand_trig(w.dot(paper.eq17_rhs(I1, I3))))
     ok = dotted and kinetic and potential and same(power, -g * c * thetadot)
-    return decide(ok, f"w . lhs(17) = d/dt[1/2 w.I.w + 1/2 (w1^2 + w3^2)]: {dotted}; |v_C|^2 = R^2 (w1^2 + w3^2): {kinetic}; "
-                      f"height of C = R sin(theta), -d/dt(m g R sin)/(m R^2) -> -g cos thetadot: {potential}; "
-                      f"w . rhs(17) = {show(power)}",
+    return decide(ok, r"$\omega \cdot \mathrm{lhs}(17) = \frac{d}{dt}\left[\frac{1}{2} \omega \cdot I \cdot \omega "
+                      r"+ \frac{1}{2} (\omega_1^2 + \omega_3^2)\right]$: " f"{dotted}; "
+                      r"$\lvert v_C \rvert^2 = R^2 (\omega_1^2 + \omega_3^2)$: " f"{kinetic}; "
+                      r"height of $C$ = $R \sin\theta$, $-\frac{d}{dt}(m g R \sin\theta)/(m R^2) \to "
+                      r"-g \cos\theta \, \dot{\theta}$: " f"{potential}; "
+                      rf"$\omega \cdot \mathrm{{rhs}}(17) = {latex(power)}$",
                   "Eq. 46 and the energy balance it states ('Mathematica confirms')",
                   "the algebra the paper leaves to Mathematica, done with sympy")
 
@@ -501,12 +526,13 @@ def _fig6_check(family, printed):
 
         phi_rate, psi_rate, v = _fig6_rates("1/100", family)
         got = [phi_rate, psi_rate] + ([v] if len(printed) == 3 else [])
-        names = ["phidot", "psidot", "v_CM/R"][: len(printed)]
+        names = [r"\dot{\phi}", r"\dot{\psi}", r"v_{CM}/R"][: len(printed)]
         half_unit = [mpmath.mpf(10) ** -3 / 2, mpmath.mpf(10) ** -3 / 2, mpmath.mpf(10) ** -2 / 2][: len(printed)]
         ok = all(abs(a - mpmath.mpf(b)) <= u for a, b, u in zip(got, printed, half_unit))
-        shown = ", ".join(f"{n} = {mpmath.nstr(a, 10)}" for n, a in zip(names, got))
-        return decide(ok, shown, ", ".join(f"{n} = {b}" for n, b in zip(names, printed)),
-                      "exact steady state at theta = 0.01 from the derived row 1; tolerance half a unit of the last printed digit",
+        shown = ", ".join(f"${n} = {mpmath.nstr(a, 10)}$" for n, a in zip(names, got))
+        return decide(ok, shown, ", ".join(f"${n} = {b}$" for n, b in zip(names, printed)),
+                      r"exact steady state at $\theta = 0.01$ from the derived row 1; tolerance half a unit of the last "
+                      "printed digit",
                       correction=shown)
     return check
 
@@ -615,35 +641,35 @@ def claims() -> list:
                      r"(I_1 + 1) \dot{\omega}_1 = -g \cos \theta", "where in the last line we have scaled out mR^2 ."),
               reading="phidot = psidot = 0 (a disk tipping over); alpha = theta - pi/2 as after Eq. 20; I1 the body's moment "
                       "about the centre; m and R kept in Eqs. 22-23"),
-        definition("eq-25-29", "Eqs. 25-29", d, "psidot = psidot_0 + beta, theta = pi/2 + alpha, sin = 1, cos = -alpha",
+        definition("eq-25-29", "Eqs. 25-29", d, r"$\dot{\psi} = \dot{\psi}_0 + \beta$, $\theta = \pi/2 + \alpha$, $\sin\theta = 1$, $\cos\theta = -\alpha$",
                    "the perturbation ansatz and first-order approximations (definitions)",
                    quote=(r"\dot{\psi} = \dot{\psi}_0 + \beta", r"\theta = \pi/2 + \alpha", r"\phi = 0 + \phi",
                           r"\sin \theta = \cos \alpha = 1", r"\cos \theta = -\sin \alpha = -\alpha")),
         Claim("eq-30", "Eq. 30", d, "linearised straight-line rolling", _check_eq30,
               quote=r"\begin{pmatrix} (k+1) \ddot{\alpha} \\ k \ddot{\phi} \\ (2k+1) \dot{\beta} \end{pmatrix} = \begin{pmatrix} -\dot{\psi}_0(2k+1)\dot{\phi} + g\alpha \\ 2k\dot{\psi}_0 \dot{\alpha} \\ 0 \end{pmatrix}",
               reading="first order in alpha, beta, phidot (Eqs. 25-29), from Eq. 18"),
-        Claim("eq-31", "Eq. 31", d, "(k+1) alpha'' = -(2(2k+1) psidot_0^2 - g) alpha", _check_eq31,
+        Claim("eq-31", "Eq. 31", d, r"$(k+1) \ddot{\alpha} = -\left(2 (2k+1) \dot{\psi}_0^2 - g\right) \alpha$", _check_eq31,
               quote=(r"From the second component we conclude $\dot{\phi} = 2\dot{\psi}_0\alpha$, which we substitute into the first component:",
                      r"(k+1) \ddot{\alpha} = -\left(2(2k+1)\dot{\psi}_0^2 - g\right) \alpha"),
               reading="the constant of integration of the second component is zero"),
-        Claim("eq-32", "Eq. 32", d, "psidot_0^2 > g / (2 (2k + 1))", _check_eq32,
+        Claim("eq-32", "Eq. 32", d, r"$\dot{\psi}_0^2 > g / (2 (2k + 1))$", _check_eq32,
               quote=(r"for bounded oscillations of α we must have:", r"\dot{\psi}_0^2 > \frac{g}{2(2k+1)}")),
         Claim("eq-33", "Eq. 33", d, "v^2 > g R / (2 (2k + 1))", _check_eq33,
               quote=(r"v^2 > \frac{gR}{2(2k+1)}", "where in the last line we have returned to usually dimensioned quantities."),
               reading="v the speed of the centre of mass"),
-        definition("eq-34-38", "Eqs. 34-38", d, "psidot small, theta = pi/2 + alpha, phidot = phidot_0 + beta",
+        definition("eq-34-38", "Eqs. 34-38", d, r"$\dot{\psi}$ small, $\theta = \pi/2 + \alpha$, $\dot{\phi} = \dot{\phi}_0 + \beta$",
                    "the perturbation ansatz and first-order approximations (definitions)",
                    quote=(r"\dot{\psi} = \dot{\psi} \quad (34)", r"\theta = \pi/2 + \alpha \quad (35)", r"\dot{\phi} = \dot{\phi}_0 + \beta",
                           r"\sin \theta = \cos \alpha = 1 \quad (37)", r"\cos \theta = -\sin \alpha = -\alpha \quad (38)")),
         Claim("eq-39", "Eq. 39", d, "linearised spin about a vertical diameter", _check_eq39,
               quote=r"\begin{pmatrix} (k+1)\ddot{\alpha} \\ k\dot{\beta} \\ (2k+1)(\ddot{\psi} - \dot{\phi}_0\dot{\alpha}) \end{pmatrix} = \begin{pmatrix} -(\dot{\psi}(2k+1) - \dot{\phi}_0(k+1)\alpha)\dot{\phi}_0 + g\alpha \\ 0 \\ \dot{\alpha}\dot{\phi}_0 \end{pmatrix}",
               reading="first order in alpha, beta, psidot (Eqs. 34-38), from Eq. 18"),
-        Claim("eq-40", "Eq. 40", d, "(k+1) alpha'' = -((k+1) psidot_0^2 - g) alpha", _check_eq40,
-              known_failure="psidot_0 printed where phidot_0 belongs", severity=TYPO,
+        Claim("eq-40", "Eq. 40", d, r"$(k+1) \ddot{\alpha} = -\left((k+1) \dot{\psi}_0^2 - g\right) \alpha$", _check_eq40,
+              known_failure=r"$\dot{\psi}_0$ printed where $\dot{\phi}_0$ belongs", severity=TYPO,
               quote=r"(k+1)\ddot{\alpha} = -\left((k+1)\dot{\psi}_0^2 - g\right)\alpha"),
-        Claim("eq-41", "Eq. 41", d, "phidot_0^2 > g/(k+1)", _check_eq41,
+        Claim("eq-41", "Eq. 41", d, r"$\dot{\phi}_0^2 > g/(k+1)$", _check_eq41,
               quote=(r"from which we conclude for bounded oscillations of α we must have:", r"\dot{\phi}_0^2 > \frac{g}{(k+1)}")),
-        Claim("footnote-2", "footnote 2", d, "Olsson: phidot_0^2 > g/(kR) assuming zero horizontal contact force",
+        Claim("footnote-2", "footnote 2", d, r"Olsson: $\dot{\phi}_0^2 > g/(k R)$ assuming zero horizontal contact force",
               _check_footnote2,
               quote=r"asserted that in this situation the horizontal component of \mathbf{F} was zero, and found "
                     r"$\dot{\phi}_0^2 > \frac{g}{kR}$.",
@@ -662,7 +688,7 @@ def claims() -> list:
               quote=(r"we take that constant to be zero.",
                      r"0 = -(-(2k+1) + (k+1))\dot{\phi}^2 \cos \theta \sin \theta - g \cos \theta",
                      r"0 = k\dot{\phi}^2 \sin \theta - g")),
-        Claim("eq-45", "Eq. 45", d, "phidot = sqrt(g / (k sin(theta)))", _check_eq45,
+        Claim("eq-45", "Eq. 45", d, r"$\dot{\phi} = \sqrt{g / (k \sin\theta)}$", _check_eq45,
               quote=r"\sqrt{\frac{g}{k \sin \theta}} = \dot{\phi}",
               reading="on the family psidot + phidot cos(theta) = 0, thetadot = 0 of the text before Eq. 43"),
         Claim("eq-46", "Eq. 46", d, "energy conservation of Eq. 17 ('lots of algebra, but Mathematica confirms')", _check_eq46,

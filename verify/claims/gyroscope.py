@@ -13,8 +13,9 @@ from models import effective, hurricane, paper
 from models.common import PAPER_G
 from models.symbols import g, phidot, psidot, theta, thetadot, thetaddot, time_derivative
 
+from .mathtext import equation, latex, tex
 from .base import TYPO, Claim, decide, definition
-from .vectors import E3, c, omega_body, s, same, show, vertical_in_frame
+from .vectors import E3, c, omega_body, s, same, vertical_in_frame
 
 SECTION = "Gyroscope and effective Lagrangian (Eqs. 83-100)"
 I1, I3 = hurricane.I1, hurricane.I3  # in units of 2 m a^2 (Eq. 64)
@@ -22,6 +23,9 @@ m, a = sp.symbols("m a", positive=True)  # m is the mass of one ball (Eq. 64), a
 NUMBERS = {I1: sp.Rational(7, 5), I3: sp.Rational(2, 5)}
 J1, pf, pp = sp.symbols("J1 p_phi p_psi", positive=True)  # J1: the I1 of Eqs. 87-93, i.e. I1~ with the tilde dropped
 TILDES = "tildes dropped (text after Eq. 86): I1 stands for I1~ = I1 + 4 and g for g~, both in units of 2 m a^2"
+
+
+T_ROT = sp.Symbol("T_rot")
 
 
 def _body_inertia():
@@ -32,7 +36,8 @@ def _check_eq83():
     w = omega_body()
     T = (I1 * (w[0] ** 2 + w[1] ** 2) + I3 * w[2] ** 2) / 2
     printed = I1 * (phidot**2 * s**2 + thetadot**2) / 2 + I3 * (phidot * c + psidot) ** 2 / 2
-    return decide(same(T, printed), show(T), show(printed), "1/2 w . I . w with w from the rotation matrices (Eq. 16)")
+    return decide(same(T, printed), equation(T_ROT, T), equation(T_ROT, printed),
+                  r"$\frac{1}{2} \omega \cdot I \cdot \omega$ with $\omega$ from the rotation matrices (Eq. 16)")
 
 
 def _gyroscope_energies():
@@ -51,8 +56,10 @@ def _check_eq84_85():
     printed84 = sp.Rational(1, 2) * 2 * m * (2 * a) ** 2 * (phidot**2 * s**2 + thetadot**2)
     printed85 = 2 * m * 2 * a * g * c
     ok = same(T_cm, printed84) and same(V, printed85)
-    return decide(ok, f"T_CM = {show(sp.factor(T_cm))}, V = {show(V)}", "1/2 2m (2a)^2 (phidot^2 sin^2 + thetadot^2), 2m 2a g cos",
-                  "v_C = w x (2a e3) about the fixed pivot; V = 2 m g z_C with z_C measured from the pivot")
+    return decide(ok, f"{equation(sp.Symbol('T_CM'), sp.factor(T_cm))}, {equation(sp.Symbol('V'), V)}",
+                  r"$\frac{1}{2} 2m (2a)^2 (\dot{\phi}^2 \sin^2\theta + \dot{\theta}^2)$, $2m \, 2a \, g \cos\theta$",
+                  r"$v_C = \omega \times (2a \, \mathbf{e}_3)$ about the fixed pivot; $V = 2 m g z_C$ with $z_C$ measured "
+                  "from the pivot")
 
 
 def _check_eq86():
@@ -61,8 +68,10 @@ def _check_eq86():
     I1t, gt = I1 + 4, 2 * g / a  # the printed I1~ and g~
     printed = (sp.Rational(1, 2) * I1t * (phidot**2 * s**2 + thetadot**2) + sp.Rational(1, 2) * I3 * (phidot * c + psidot) ** 2
                - gt * c)
-    return decide(same(got, printed), show(got), "Eq. 86 with I1~ = I1 + 4 and g~ = 2g/a",
-                  "(T_rot + T_CM - V) / (2 m a^2) from the vectors, I1 in units of 2 m a^2 (Eq. 64); 4 = 2m (2a)^2 / (2 m a^2)")
+    return decide(same(got, printed), equation(sp.Symbol("L"), got),
+                  r"Eq. 86 with $\tilde{I}_1 = I_1 + 4$ and $\tilde{g} = 2g/a$",
+                  r"$(T_{rot} + T_{CM} - V) / (2 m a^2)$ from the vectors, $I_1$ in units of $2 m a^2$ (Eq. 64); "
+                  r"$4 = 2m (2a)^2 / (2 m a^2)$")
 
 
 def _tilde_lagrangian():
@@ -74,7 +83,8 @@ def _check_eq87_88():
     ppsi, pphi = sp.diff(L, psidot), sp.diff(L, phidot)
     ok = same(ppsi, I3 * (phidot * c + psidot)) and same(pphi, I3 * c * (phidot * c + psidot) + J1 * phidot * s**2) \
         and same(pphi, ppsi * c + J1 * phidot * s**2)
-    return decide(ok, f"p_psi = {show(ppsi)}, p_phi = {show(sp.expand(pphi))}", "Eqs. 87-88", "dL/dpsidot, dL/dphidot of Eq. 86")
+    return decide(ok, f"{equation(pp, ppsi)}, {equation(pf, sp.expand(pphi))}", "Eqs. 87-88",
+                  r"$\partial L / \partial \dot{\psi}$, $\partial L / \partial \dot{\phi}$ of Eq. 86")
 
 
 def _energy_in_momenta():
@@ -89,8 +99,9 @@ def _check_eq89_90():
     V90 = (pf - pp * c) ** 2 / (2 * J1 * s**2) + g * c
     printed = J1 * thetadot**2 / 2 + V90 + pp**2 / (2 * I3)
     ok = same(got, printed) and not sp.simplify(got - J1 * thetadot**2 / 2 - V90).has(theta, thetadot)
-    return decide(ok, show(got), show(printed), "the energy with the rates eliminated for the momenta; V of Eq. 90 is the "
-                  "rest up to the constant p_psi^2/(2 I3)")
+    return decide(ok, equation(sp.Symbol("E"), got), equation(sp.Symbol("E"), printed),
+                  "the energy with the rates eliminated for the momenta; $V$ of Eq. 90 is the rest up to the constant "
+                  r"$p_\psi^2/(2 I_3)$")
 
 
 def _check_eq91_93():
@@ -104,10 +115,11 @@ def _check_eq91_93():
     e93 = th**2 / 2 * (I3**2 * sp.Symbol("omega3") ** 2 / (4 * J1) - g)
     steps = (finite, same(series - g, e91), same(e91, e92),
              same(e92.subs(pp, I3 * w3), e93.subs(sp.Symbol("omega3"), w3)) and same(sp.diff(_tilde_lagrangian(), psidot), I3 * w3))
-    return decide(all(steps), f"series of V (Eq. 90, p_phi = p_psi) to second order: {show(sp.expand(series))}",
+    return decide(all(steps), r"series of $V$ (Eq. 90, $p_\phi = p_\psi$) to second order: "
+                  f"{equation(sp.Symbol('V'), sp.expand(series))}",
                   "Eqs. 91-93",
-                  "p_phi = p_psi keeps V finite at theta = 0; Eq. 91 is the series (constant g), Eq. 92 the same quadratic, "
-                  f"Eq. 93 with p_psi = I3 omega3 (Eq. 87, omega3 of Eq. 16); steps {steps}")
+                  r"$p_\phi = p_\psi$ keeps $V$ finite at $\theta = 0$; Eq. 91 is the series (constant $g$), Eq. 92 the same "
+                  r"quadratic, Eq. 93 with $p_\psi = I_3 \omega_3$ (Eq. 87, $\omega_3$ of Eq. 16); " f"steps {steps}")
 
 
 def _rolling_sleeping_threshold():
@@ -129,12 +141,14 @@ def _check_eq95():
     worse = (4 * (I1 + 4) * 2 / I3**2).subs(NUMBERS)  # I1~ = I1 + 4, g~ = 2g (units of a)
     rho_min, rolling = _rolling_sleeping_threshold()
     ok = from_93 and same(got, 35) and worse > got and got > 5 * rolling
-    return decide(ok, f"Eq. 93's bracket is positive iff omega3^2 > 4 I1 g / I3^2 ({from_93}); 4 I1 / I3^2 = {got}; with the tildes 4 (I1 + 4) 2 / I3^2 = {worse}; the rolling balls' own theta -> 0 "
-                      f"steady motions need only (phidot + psidot)^2 >= {rolling} g (at rho = {rho_min}), i.e. omega3^2 >= "
-                      f"{sp.N(rolling, 4)} g, {sp.N(got / rolling, 3)} times less",
-                  "35 g, way too big; the tildes make it worse",
-                  "I1 = 7/5, I3 = 2/5 (Eq. 64); 'too big' against the rolling balls (text after Eq. 82; Fig. 18 shows "
-                  "omega3 ~ 2 x 0.98 sqrt(g/a) stable)")
+    return decide(ok, r"Eq. 93's bracket is positive iff $\omega_3^2 > 4 I_1 g / I_3^2$ " f"({from_93}); "
+                      f"$4 I_1 / I_3^2 = {got}$; with the tildes $4 (I_1 + 4) 2 / I_3^2 = {worse}$; the rolling balls' own "
+                      rf"$\theta \to 0$ steady motions need only $(\dot{{\phi}} + \dot{{\psi}})^2 \geq {latex(rolling)} g$ "
+                      rf"(at $\rho = {latex(rho_min)}$), i.e. $\omega_3^2 \geq {sp.N(rolling, 4)} g$, "
+                      f"{sp.N(got / rolling, 3)} times less",
+                  "$35 g$, way too big; the tildes make it worse",
+                  r"$I_1 = 7/5$, $I_3 = 2/5$ (Eq. 64); 'too big' against the rolling balls (text after Eq. 82; Fig. 18 shows "
+                  r"$\omega_3 \approx 2 \times 0.98 \sqrt{g/a}$ stable)")
 
 
 def _check_pe_text():
@@ -146,11 +160,12 @@ def _check_pe_text():
     printed = m * g * a * c
     ok = same(pe - pe.subs(theta, sp.pi / 2), printed)  # up to a constant
     eq96 = same((pe / (2 * m * a**2)).subs(g, g * a), g * c + g)  # Eq. 96's -g cos(theta): PE per 2 m a^2, g <- g/a
-    return decide(ok and same(cm_above_centre, a * c), f"PE = 2 m g z_C = {show(sp.simplify(pe))}, i.e. 2 m g a cos(theta) + const; "
-                  f"Eq. 96's g cos(theta) is this per 2 m a^2 ({eq96})",
-                  "PE = m g a cos(theta) (C a cos(theta) above the lower centre, which is a above the plane)",
-                  "mass 2m (Eq. 64: m is one ball); the height a cos(theta) is right, the mass is halved",
-                  correction="PE = 2 m g a cos(theta) (+ constant), which is what Eq. 96 uses")
+    return decide(ok and same(cm_above_centre, a * c),
+                  rf"$\mathrm{{PE}} = 2 m g z_C = {latex(sp.simplify(pe))}$, i.e. $2 m g a \cos\theta$ + const; "
+                  rf"Eq. 96's $g \cos\theta$ is this per $2 m a^2$ ({eq96})",
+                  r"$\mathrm{PE} = m g a \cos\theta$ ($C$ is $a \cos\theta$ above the lower centre, which is $a$ above the plane)",
+                  r"mass $2m$ (Eq. 64: $m$ is one ball); the height $a \cos\theta$ is right, the mass is halved",
+                  correction=r"$\mathrm{PE} = 2 m g a \cos\theta$ (+ constant), which is what Eq. 96 uses")
 
 
 def _check_effective_height():
@@ -159,8 +174,10 @@ def _check_effective_height():
     zdot = time_derivative(z)
     ke = sp.Rational(1, 2) * 2 * m * zdot**2
     ok = same(z, a * (1 + c)) and same(zdot, -a * s * thetadot) and same(ke, m * a**2 * s**2 * thetadot**2)
-    return decide(ok, f"z_C = -r_P . Z = {show(z)}; zdot = {show(zdot)}; 1/2 (2m) zdot^2 = {show(ke)}",
-                  "zdot = -a sin(theta) thetadot; KE 1/2 2m a^2 sin^2(theta) thetadot^2", "r_P of Eq. 63, mass 2m")
+    return decide(ok, rf"$z_C = -r_P \cdot Z = {latex(z)}$; $\dot{{z}} = {latex(zdot)}$; "
+                      rf"$\frac{{1}}{{2}} (2m) \dot{{z}}^2 = {latex(ke)}$",
+                  r"$\dot{z} = -a \sin\theta \, \dot{\theta}$; KE $\frac{1}{2} 2m a^2 \sin^2\theta \, \dot{\theta}^2$",
+                  "$r_P$ of Eq. 63, mass $2m$")
 
 
 def _effective_construction():
@@ -175,9 +192,9 @@ def _effective_construction():
 def _check_eq96():
     got = _effective_construction()
     printed = paper.eq96_lagrangian(I1, I3)
-    return decide(same(got + g, printed), show(sp.expand(got)), "Eq. 96 (up to the constant g)",
-                  "T_rot of Eq. 83 with psidot = phidot, + 1/2 (2m) zdot^2 with z_C = a (1 + cos), - 2 m g z_C, per 2 m a^2, "
-                  "g <- g/a; this decides that Eq. 96 assembles its stated pieces, not that the construction is physics")
+    return decide(same(got + g, printed), equation(sp.Symbol("L"), sp.expand(got)), "Eq. 96 (up to the constant $g$)",
+                  r"$T_{rot}$ of Eq. 83 with $\dot{\psi} = \dot{\phi}$, + $\frac{1}{2} (2m) \dot{z}^2$ with "
+                  r"$z_C = a (1 + \cos\theta)$, $- 2 m g z_C$, per $2 m a^2$, $g \leftarrow g/a$; this decides that Eq. 96 assembles its stated pieces, not that the construction is physics")
 
 
 def _check_eq97():
@@ -185,9 +202,11 @@ def _check_eq97():
     printed = I1 * phidot**2 * s * c - I3 * phidot**2 * (c + 1) * s + thetadot**2 * s * c + g * s
     ddt = time_derivative(sp.diff(L, thetadot))
     ok = same(sp.diff(L, theta), printed) and same(ddt.subs({thetadot: 0, thetaddot: 0}), 0)
-    return decide(ok, f"dL/dtheta = {show(sp.diff(L, theta))}; d/dt dL/dthetadot = {show(sp.factor(ddt))}, zero at "
-                      "thetadot = thetaddot = 0",
-                  "dL/dtheta = d/dt dL/dthetadot = 0", "the Euler-Lagrange theta equation of Eq. 96, at theta = constant")
+    return decide(ok, rf"$\frac{{\partial L}}{{\partial \theta}} = {latex(sp.diff(L, theta))}$; "
+                      rf"$\frac{{d}}{{dt}} \frac{{\partial L}}{{\partial \dot{{\theta}}}} = {latex(sp.factor(ddt))}$, zero at "
+                      r"$\dot{\theta} = \ddot{\theta} = 0$",
+                  r"$\frac{\partial L}{\partial \theta} = \frac{d}{dt} \frac{\partial L}{\partial \dot{\theta}} = 0$",
+                  r"the Euler-Lagrange $\theta$ equation of Eq. 96, at $\theta$ = constant")
 
 
 def _check_eq98_100():
@@ -200,9 +219,12 @@ def _check_eq98_100():
     e97 = I1 * phidot**2 * s * c - I3 * phidot**2 * (c + 1) * s + g * s
     ok = len(sol) == 1 and same(e97, s * e98) and same(sol[0], e99[0]) \
         and same(sol[0].subs(NUMBERS), sp.Rational(2, 5) - g / phidot**2)
-    return decide(ok, f"steady angle of the Euler-Lagrange equations of Eq. 96: cos(theta) = {show(sol)}",
-                  "Eq. 98; (I1 - I3) cos = I3 - g/phidot^2 (Eq. 99); cos(theta) = 2/5 - g/phidot^2 (Eq. 100)",
-                  "Eq. 97 at thetadot = 0 is sin(theta) times Eq. 98; I1 - I3 = 1, I3 = 2/5; the same steady precession as Eq. 72")
+    return decide(ok, "steady angle of the Euler-Lagrange equations of Eq. 96: "
+                      + ", ".join(equation(c, x) for x in sol),
+                  r"Eq. 98; $(I_1 - I_3) \cos\theta = I_3 - g/\dot{\phi}^2$ (Eq. 99); "
+                  r"$\cos\theta = 2/5 - g/\dot{\phi}^2$ (Eq. 100)",
+                  r"Eq. 97 at $\dot{\theta} = 0$ is $\sin\theta$ times Eq. 98; $I_1 - I_3 = 1$, $I_3 = 2/5$; the same steady "
+                  "precession as Eq. 72")
 
 
 def _check_effective_differs():
@@ -214,9 +236,9 @@ def _check_effective_differs():
     inertia_eff = sp.diff(sp.diff(paper.eq96_lagrangian(I1, I3), thetadot), thetadot)  # coefficient of thetaddot
     inertia_81 = sp.diff(paper.eq81_lhs(I1, I3)[0], thetaddot)
     ok = diff != 0 and not same(inertia_eff, inertia_81)
-    return decide(ok, f"thetaddot coefficient: Eq. 96 gives {show(inertia_eff)}, Eq. 81 {show(inertia_81)}; "
-                      f"thetaddot(rolling) - thetaddot(effective) at psidot = phidot is nonzero (at theta = 1.2, thetadot = 3, "
-                      f"phidot = 150: {value})", "the resulting dynamics are wrong (do not match Eq. 81)",
+    return decide(ok, rf"$\ddot{{\theta}}$ coefficient: Eq. 96 gives {tex(inertia_eff)}, Eq. 81 {tex(inertia_81)}; "
+                      r"$\ddot{\theta}_\mathrm{rolling} - \ddot{\theta}_\mathrm{effective}$ at $\dot{\psi} = \dot{\phi}$ "
+                      r"is nonzero (at $\theta = 1.2$, $\dot{\theta} = 3$, $\dot{\phi} = 150$: " f"{value})", "the resulting dynamics are wrong (do not match Eq. 81)",
                   "the paper's statement is that the two differ; the difference is not identically zero")
 
 
@@ -239,10 +261,11 @@ def _check_fig15_16_numbers():
         th15 = _steady_root(mpmath.mpf("2.6"), (mpmath.mpf("1.4"), mpmath.mpf("1.5707")))
         slow = mpmath.findroot(lambda r: f(mpmath.pi / 2, r, *pars), (mpmath.mpf(30), mpmath.mpf(80)), solver="anderson") ** 2 / PAPER_G
     ok = abs(slow - mpmath.mpf("2.5")) < 1e-20 and abs(th16 - mpmath.mpf("1.20")) <= 0.005 and 0 < th15 < mpmath.pi / 2
-    return decide(ok, f"derived: theta0 reaches pi/2 at phidot^2 = {mpmath.nstr(slow, 8)} g; theta0 at phidot^2 = 2.6 g: "
-                      f"{mpmath.nstr(th15, 6)} (below pi/2, so a steady state exists); at phidot^2 = 25 g: {mpmath.nstr(th16, 6)}",
-                  "sqrt(2.6 g/a) near the slow spin limit sqrt(2.5 g/a); theta0 = 1.20 at sqrt(25 g/a)",
-                  "roots of the derived row 1 with psidot = phidot")
+    return decide(ok, rf"derived: $\theta_0$ reaches $\pi/2$ at $\dot{{\phi}}^2 = {mpmath.nstr(slow, 8)} g$; $\theta_0$ at "
+                      rf"$\dot{{\phi}}^2 = 2.6 g$: {mpmath.nstr(th15, 6)} (below $\pi/2$, so a steady state exists); at "
+                      rf"$\dot{{\phi}}^2 = 25 g$: {mpmath.nstr(th16, 6)}",
+                  r"$\sqrt{2.6 g/a}$ near the slow spin limit $\sqrt{2.5 g/a}$; $\theta_0 = 1.20$ at $\sqrt{25 g/a}$",
+                  r"roots of the derived row 1 with $\dot{\psi} = \dot{\phi}$")
 
 
 def _check_fig16_limit():
@@ -250,9 +273,9 @@ def _check_fig16_limit():
         limit = mpmath.acos(mpmath.mpf(2) / 5)  # Eq. 72 as g/phidot^2 -> 0
         printed_expr = mpmath.cos(mpmath.mpf(2) / 5) ** 2
     ok = abs(printed_expr - mpmath.mpf("1.16")) <= 0.005
-    return decide(ok, f"cos^-1(2/5) = {mpmath.nstr(limit, 6)}; cos^2(2/5) = {mpmath.nstr(printed_expr, 6)}",
-                  "the limit cos^2(2/5) = 1.16", "the number 1.16 is cos^-1(2/5), the expression printed is not",
-                  correction="the limit cos^-1(2/5) = 1.159")
+    return decide(ok, rf"$\cos^{{-1}}(2/5) = {mpmath.nstr(limit, 6)}$; $\cos^2(2/5) = {mpmath.nstr(printed_expr, 6)}$",
+                  r"the limit $\cos^2(2/5) = 1.16$", r"the number 1.16 is $\cos^{-1}(2/5)$, the expression printed is not",
+                  correction=r"the limit $\cos^{-1}(2/5) = 1.159$")
 
 
 def claims() -> list:
@@ -323,7 +346,7 @@ def claims() -> list:
               _check_effective_differs,
               quote=r"however the terms that would be on the rhs (related to $\dot{\theta}$ and $\ddot{\theta}$) do not match "
                     r"Eq. (81) so the resulting dynamics are wrong."),
-        Claim("fig-15-16-numbers", "Figs. 15-16 (numbers)", d, "slow spin limit sqrt(2.5 g/a); theta0 = 1.20 at sqrt(25 g/a)",
+        Claim("fig-15-16-numbers", "Figs. 15-16 (numbers)", d, r"slow spin limit $\sqrt{2.5 g/a}$; $\theta_0 = 1.20$ at $\sqrt{25 g/a}$",
               _check_fig15_16_numbers, "numbers", "the printed digits",
               quote=(r"with $\dot{\psi}_0 = \dot{\phi}_0 \approx \sqrt{2.6g/a}$ (i.e., near the slow spin limit "
                      r"$\dot{\phi}_0 = \sqrt{2.5g/a}$)",

@@ -13,8 +13,9 @@ from models import hurricane, paper
 from models.rolling import derive
 from models.symbols import g, phidot, phiddot, psidot, psiddot, thetadot, thetaddot, time_derivative
 
+from .mathtext import equation, latex, tex
 from .base import TYPO, Claim, decide, definition, rows_identity
-from .vectors import E1, E2, E3, c, omega_body, omega_body_dot, omega_frame, s, same, show, vertical_in_frame
+from .vectors import E1, E2, E3, c, omega_body, omega_body_dot, omega_frame, s, same, vertical_in_frame
 
 SECTION = "Hurricane balls (Eqs. 63-82)"
 I1, I3 = hurricane.I1, hurricane.I3
@@ -46,8 +47,9 @@ def _identity(id, source, statement, printed, derived=None, quote="", reading=No
 def _check_eq63():
     centre = -a * E3  # lower ball's centre, a below C along the axis
     contact = centre - a * vertical_in_frame()  # the lowest point of that ball
-    return decide(same(contact, RPA), show(contact.T), "a (0, -sin(theta), -1 - cos(theta))",
-                  "C at the balls' touching point; P = lower centre - a Z, with Z = sin(theta) e2 + cos(theta) e3")
+    return decide(same(contact, RPA), equation(sp.Symbol("r_P"), contact), r"$a (0, -\sin\theta, -1 - \cos\theta)$",
+                  r"$C$ at the balls' touching point; $P$ = lower centre $- a Z$, with "
+                  r"$Z = \sin\theta \, \mathbf{e}_2 + \cos\theta \, \mathbf{e}_3$")
 
 
 def _check_eq64():
@@ -62,8 +64,8 @@ def _check_eq64():
     I3_pair = 2 * own_axial / (2 * a**2)  # in units of 2 m a^2 (m: one ball)
     I1_pair = 2 * (own_transverse + a**2) / (2 * a**2)
     ok = same(I1_pair, sp.Rational(7, 5)) and same(I3_pair, sp.Rational(2, 5)) and I1_pair > I3_pair
-    return decide(ok, f"I1 = {I1_pair}, I3 = {I3_pair} (units of 2 m a^2), so I1 > I3",
-                  "(2/5) m a^2 diag(7, 7, 2) = 2 m a^2 diag(7/5, 7/5, 2/5)",
+    return decide(ok, f"{equation(I1, I1_pair)}, {equation(I3, I3_pair)} (units of $2 m a^2$), so $I_1 > I_3$",
+                  r"$(2/5) m a^2 \operatorname{diag}(7, 7, 2) = 2 m a^2 \operatorname{diag}(7/5, 7/5, 2/5)$",
                   "ball moments by integration, parallel-axis shift a for the transverse axis")
 
 
@@ -75,9 +77,11 @@ def _check_cm_rest():
     v = (-omega_body().cross(RPA)).subs(thetadot, 0)
     sol = sp.solve(v[0], psidot)
     rest = sol == [phidot] and same(v[1], 0) and same(v[2], 0)
-    return decide(radii and rest, f"radii of P's circles on the plane and on the lower ball: a sin(theta) both ({radii}); "
-                                  f"v_C = 0 with thetadot = 0 iff psidot = {sol}",
-                  "radius a sin(theta) twice; Delta psi = Delta phi", "geometry of r_P, and v_C = -w x r_P with thetadot = 0")
+    return decide(radii and rest, r"radii of $P$'s circles on the plane and on the lower ball: $a \sin\theta$ both "
+                                  rf"({radii}); $v_C = 0$ with $\dot{{\theta}} = 0$ iff "
+                                  + ", ".join(equation(psidot, x) for x in sol),
+                  r"radius $a \sin\theta$ twice; $\Delta\psi = \Delta\phi$",
+                  r"geometry of $r_P$, and $v_C = -\omega \times r_P$ with $\dot{\theta} = 0$")
 
 
 def _check_eq65():
@@ -86,17 +90,19 @@ def _check_eq65():
     printed_v = -a * printed_w.cross(RP)
     e66 = a * sp.Matrix([(phidot - psidot) * s, -thetadot * (1 + c), thetadot * s])
     follows = same(-w.cross(RPA), e66)  # Eq. 66 follows from Eq. 16's omega, not from the printed one
-    return decide(same(w, printed_w), f"omega = {show(w.T)} (Eq. 16, rotation matrices)", show(printed_w.T),
-                  f"the printed product is {show(sp.simplify(printed_v).T)}, which is not Eq. 66; Eq. 16's omega gives "
+    return decide(same(w, printed_w), f"{equation(sp.Symbol('omega'), w)} (Eq. 16, rotation matrices)",
+                  equation(sp.Symbol("omega"), printed_w),
+                  f"the printed product is {tex(sp.simplify(printed_v))}, which is not Eq. 66; Eq. 16's $\\omega$ gives "
                   f"Eq. 66 ({follows})",
-                  correction="v_CM = -a (thetadot, phidot sin(theta), phidot cos(theta) + psidot) x (0, -sin(theta), "
-                             "-1 - cos(theta)), with the omega of Eq. 16")
+                  correction=r"$v_{CM} = -a \left(\dot{\theta}, \dot{\phi} \sin\theta, \dot{\phi} \cos\theta + \dot{\psi}\right) "
+                             r"\times (0, -\sin\theta, -1 - \cos\theta)$, with the $\omega$ of Eq. 16")
 
 
 def _check_eq66():
     v = -omega_body().cross(RPA)
     printed = a * sp.Matrix([(phidot - psidot) * s, -thetadot * (1 + c), thetadot * s])
-    return decide(same(v, printed), show(v.T), show(printed.T), "-w x r_P with the omega of Eq. 16 (not the printed Eq. 65)")
+    return decide(same(v, printed), equation(sp.Symbol("v_CM"), v), equation(sp.Symbol("v_CM"), printed),
+                  r"$-\omega \times r_P$ with the $\omega$ of Eq. 16 (not the printed Eq. 65)")
 
 
 def _check_height():
@@ -109,19 +115,22 @@ def _check_height():
     moving = same(vertical, time_derivative(z)) and same(vertical, -a * s * thetadot) \
         and same(horizontal.subs(psidot, phidot).dot(horizontal.subs(psidot, phidot)), a**2 * thetadot**2 * (1 + c) ** 2)
     ok = same(z, a * (1 + c)) and rest and moving
-    return decide(ok, f"z = -r_P . Z = {show(sp.simplify(z))}; at psidot = phidot, thetadot = 0, v_C = 0 ({rest}); otherwise "
-                      f"vertical v_C . Z = {show(vertical)} and, at psidot = phidot, horizontal speed a |thetadot| (1 + cos)",
-                  "at rest iff phidot = psidot, thetadot = 0; else vertical (z = a (1 + cos(theta))) and horizontal motion",
-                  "v_C = -w x r_P")
+    return decide(ok, rf"$z = -r_P \cdot Z = {latex(sp.simplify(z))}$; at $\dot{{\psi}} = \dot{{\phi}}$, "
+                      rf"$\dot{{\theta}} = 0$, $v_C = 0$ ({rest}); otherwise vertical $v_C \cdot Z = {latex(vertical)}$ and, at "
+                      r"$\dot{\psi} = \dot{\phi}$, horizontal speed $a \lvert \dot{\theta} \rvert (1 + \cos\theta)$",
+                  r"at rest iff $\dot{\phi} = \dot{\psi}$, $\dot{\theta} = 0$; else vertical ($z = a (1 + \cos\theta)$) and "
+                  "horizontal motion",
+                  r"$v_C = -\omega \times r_P$")
 
 
 def _check_inconsistent():
     rows = _rows().subs({phiddot: 0, psiddot: 0, psidot: phidot})
     row3 = sp.factor(sp.simplify(rows[2]))
     ok = same(row3, -phidot * thetadot * s * (I3 + c + 1))
-    return decide(ok, f"derived row 3 with phidot = psidot constant: {show(row3)} = 0", "forces thetadot = 0",
-                  "I3 + cos(theta) + 1 > 0, so phidot thetadot sin(theta) = 0; the printed third component of Eq. 80-81 "
-                  "is the same row")
+    return decide(ok, rf"derived row 3 with $\dot{{\phi}} = \dot{{\psi}}$ constant: {equation(row3, 0)}",
+                  r"forces $\dot{\theta} = 0$",
+                  r"$I_3 + \cos\theta + 1 > 0$, so $\dot{\phi} \dot{\theta} \sin\theta = 0$; the printed third component "
+                  "of Eq. 80-81 is the same row")
 
 
 def _check_eq67():
@@ -131,9 +140,10 @@ def _check_eq67():
     L = (_inertia_scaled() * omega_body()).subs({thetadot: 0, psidot: phidot})
     dL = omega_frame().subs(thetadot, 0).cross(L)
     ok = same(torque, 2 * m * g * a * s * E1)
-    return decide(ok, f"r_P x (2 m g Z) = {show(torque.T)}: out of the page (e1, Fig. 8) for 0 < theta < pi/2; "
-                      f"dL/dt per 2 m a^2 = {show(sp.factor(dL[0]))} e1, > 0 on the steady states (cos(theta) < 2/5)",
-                  "Gamma = 2 m g a sin(theta), out of the page", "the normal force of the CM-at-rest state about C")
+    return decide(ok, rf"$r_P \times (2 m g Z) = {latex(torque)}$: out of the page ($\mathbf{{e}}_1$, Fig. 8) for "
+                      rf"$0 < \theta < \pi/2$; $\frac{{dL}}{{dt}}$ per $2 m a^2$ = ${latex(sp.factor(dL[0]))} \, \mathbf{{e}}_1$, "
+                      r"$> 0$ on the steady states ($\cos\theta < 2/5$)",
+                  r"$\Gamma = 2 m g a \sin\theta$, out of the page", "the normal force of the CM-at-rest state about $C$")
 
 
 def _inertia_scaled():
@@ -153,12 +163,13 @@ def _check_eq68():
     scaled = sp.simplify((torque / (2 * m * a**2)).subs(g, g * a))  # divide out 2 m a^2, then g <- g/a
     printed_rhs = 2 * m * g * a * s
     rhs_ok = same(printed_rhs, scaled)
-    return decide(lhs_ok and rhs_ok, f"L_perp phidot = {show(printed_lhs)} ({lhs_ok}); Gamma / (2 m a^2) with g <- g/a: "
-                                     f"{show(scaled)}",
-                  "... = 2 m g a sin(theta)",
-                  "the printed right side keeps the 2 m a the sentence divides out: in the scaled units it is 2 m a times "
-                  "the torque; Eq. 69 uses g sin(theta), so what follows is right",
-                  correction="L_perp phidot = phidot [I3 (psidot + phidot cos) sin - I1 phidot sin cos] = g sin(theta)")
+    return decide(lhs_ok and rhs_ok, rf"$L_\perp \dot{{\phi}} = {latex(printed_lhs)}$ ({lhs_ok}); "
+                                     rf"$\Gamma / (2 m a^2)$ with $g \leftarrow g/a$: {tex(scaled)}",
+                  r"$\ldots = 2 m g a \sin\theta$",
+                  "the printed right side keeps the $2 m a$ the sentence divides out: in the scaled units it is $2 m a$ times "
+                  r"the torque; Eq. 69 uses $g \sin\theta$, so what follows is right",
+                  correction=r"$L_\perp \dot{\phi} = \dot{\phi} \left[I_3 (\dot{\psi} + \dot{\phi} \cos\theta) \sin\theta "
+                             r"- I_1 \dot{\phi} \sin\theta \cos\theta\right] = g \sin\theta$")
 
 
 def _check_eq69_70():
@@ -166,15 +177,16 @@ def _check_eq69_70():
     e69 = phidot**2 * (I3 * (1 + c) - I1 * c) - g
     e70 = (I3 - (I1 - I3) * c) - g / phidot**2
     ok = same(sp.simplify(derived / s), -e69) and same(e69 / phidot**2, e70)
-    return decide(ok, f"derived row 1 at constant theta, psidot = phidot: {show(derived)} = 0", "Eqs. 69-70",
-                  "the derived condition divided by sin(theta) is Eq. 69; Eq. 70 is Eq. 69 divided by phidot^2")
+    return decide(ok, rf"derived row 1 at constant $\theta$, $\dot{{\psi}} = \dot{{\phi}}$: {equation(derived, 0)}",
+                  "Eqs. 69-70",
+                  r"the derived condition divided by $\sin\theta$ is Eq. 69; Eq. 70 is Eq. 69 divided by $\dot{\phi}^2$")
 
 
 def _check_eq71_72():
     got = (I3 - (I1 - I3) * c).subs(NUMBERS)
     ok = same(got, sp.Rational(2, 5) - c)
-    return decide(ok, f"I3 - (I1 - I3) cos(theta) = {show(got)}", "2/5 - cos(theta) = g/phidot^2",
-                  "I1 = 7/5, I3 = 2/5 (Eq. 64)")
+    return decide(ok, rf"$I_3 - (I_1 - I_3) \cos\theta = {latex(got)}$", r"$2/5 - \cos\theta = g/\dot{\phi}^2$",
+                  "$I_1 = 7/5$, $I_3 = 2/5$ (Eq. 64)")
 
 
 def _eq73():
@@ -201,8 +213,10 @@ def _check_eq75_76():
     vc = w.cross(RPA)
     dvc = wd.cross(RPA) + w.cross(rdot)  # d/dt (w x r_P), components in 1-2-3: the two terms Eq. 74 carries
     t76 = same(2 * m * w.dot(RPA.cross(dvc)), 2 * m * vc.dot(dvc)) and same(2 * m * vc.dot(dvc), time_derivative(m * vc.dot(vc)))
-    return decide(t75 and t76, f"Eq. 75: {t75}; Eq. 76: {t76} (CM KE = 1/2 (2m) |w x r_P|^2)", "each term as printed",
-                  "the w-dotted terms of Eq. 74; the magnitude |w x r_P| is the same in every frame")
+    return decide(t75 and t76, f"Eq. 75: {t75}; Eq. 76: {t76} " r"(CM KE = $\frac{1}{2} (2m) \lvert \omega \times r_P \rvert^2$)",
+                  "each term as printed",
+                  r"the $\omega$-dotted terms of Eq. 74; the magnitude $\lvert \omega \times r_P \rvert$ is the same in every "
+                  "frame")
 
 
 def _check_eq77():
@@ -217,13 +231,17 @@ def _check_eq77():
     conclusion = same(-w.dot(OxL), 0)
     printed_step = not nonzero  # Omega x L ~ (w x e3) x (w x e3) = 0 would need Omega x L = 0
     ok = printed_step and conclusion
-    return decide(ok, f"Omega x L = ({show(factor)}) (w x e3) per 2 m a^2, not zero ({nonzero}); "
-                      f"-w . Omega x L = 0 ({conclusion})",
-                  "-w . Omega x L ~ w . (w x e3) x (w x e3) ~ w . (w x e3) = 0",
-                  f"(w x e3) x (w x e3) is the zero vector ({zero_vector}), so the middle step says nothing about Omega x L; "
-                  f"Omega x L is proportional to w x e3 ({proportional}), which is what the conclusion needs",
-                  correction="-w . Omega x L = -((I3 - I1) w3 + I1 psidot) w . (w x e3) = 0, since "
-                             "Omega x L = ((I3 - I1) w3 + I1 psidot)(w x e3) (I per 2 m a^2)")
+    return decide(ok, rf"$\Omega \times L = \left({latex(factor)}\right) (\omega \times \mathbf{{e}}_3)$ per $2 m a^2$, "
+                      rf"not zero ({nonzero}); $-\omega \cdot \Omega \times L = 0$ ({conclusion})",
+                  r"$-\omega \cdot \Omega \times L \sim \omega \cdot (\omega \times \mathbf{e}_3) \times "
+                  r"(\omega \times \mathbf{e}_3) \sim \omega \cdot (\omega \times \mathbf{e}_3) = 0$",
+                  r"$(\omega \times \mathbf{e}_3) \times (\omega \times \mathbf{e}_3)$ is the zero vector "
+                  rf"({zero_vector}), so the middle step says nothing about $\Omega \times L$; $\Omega \times L$ is "
+                  rf"proportional to $\omega \times \mathbf{{e}}_3$ ({proportional}), which is what the conclusion needs",
+                  correction=r"$-\omega \cdot \Omega \times L = -\left((I_3 - I_1) \omega_3 + I_1 \dot{\psi}\right) "
+                             r"\omega \cdot (\omega \times \mathbf{e}_3) = 0$, since "
+                             r"$\Omega \times L = \left((I_3 - I_1) \omega_3 + I_1 \dot{\psi}\right) (\omega \times \mathbf{e}_3)$ "
+                             "($I$ per $2 m a^2$)")
 
 
 def _check_eq78():
@@ -231,8 +249,10 @@ def _check_eq78():
     lhs = RPA.cross(Om.cross(RPA.cross(w)))
     middle = RPA.cross(-Om.dot(RPA) * w)
     ok = same(lhs, middle) and same(2 * m * w.dot(middle), 0)
-    return decide(ok, f"r_P x (Omega x (r_P x w)) = r_P x (-(Omega . r_P) w): {same(lhs, middle)}; dotted with w: 0",
-                  "2m w . r_P x (Omega x (r_P x w)) = 2m w . r_P x (-Omega . r_P) w = 0", "vector identities, a kept")
+    return decide(ok, r"$r_P \times (\Omega \times (r_P \times \omega)) = r_P \times (-(\Omega \cdot r_P) \omega)$: "
+                      rf"{same(lhs, middle)}; dotted with $\omega$: 0",
+                  r"$2m \, \omega \cdot r_P \times (\Omega \times (r_P \times \omega)) = 2m \, \omega \cdot r_P \times "
+                  r"(-\Omega \cdot r_P) \omega = 0$", "vector identities, $a$ kept")
 
 
 def _check_eq79():
@@ -243,12 +263,14 @@ def _check_eq79():
     steps = [same(got, p) for p in printed]
     consistent = same(got, -time_derivative(potential))
     ok = all(steps)
-    return decide(ok, f"-2m w . r_P x g = {show(sp.factor(got))} = -d/dt(2 m g z_C), z_C = a (1 + cos(theta)) ({consistent})",
-                  "2 m g w . e1 sin(theta) = 2 m g sin(theta) thetadot = -d/dt(2 m g cos(theta))",
-                  f"r_P = a (0, -sin, -1 - cos) (Eq. 63): the printed forms drop the factor a (steps {steps}); energy "
-                  "conservation, which the equation is for, is unaffected",
-                  correction="-2m w . r_P x g = 2 m g a w . e1 sin(theta) = 2 m g a sin(theta) thetadot = "
-                             "-d/dt(2 m g a cos(theta))")
+    return decide(ok, rf"$-2m \, \omega \cdot r_P \times g = {latex(sp.factor(got))} = -\frac{{d}}{{dt}}(2 m g z_C)$, "
+                      rf"$z_C = a (1 + \cos\theta)$ ({consistent})",
+                  r"$2 m g \, \omega \cdot \mathbf{e}_1 \sin\theta = 2 m g \sin\theta \, \dot{\theta} = "
+                  r"-\frac{d}{dt}(2 m g \cos\theta)$",
+                  rf"$r_P = a (0, -\sin\theta, -1 - \cos\theta)$ (Eq. 63): the printed forms drop the factor $a$ (steps {steps}); "
+                  "energy conservation, which the equation is for, is unaffected",
+                  correction=r"$-2m \, \omega \cdot r_P \times g = 2 m g a \, \omega \cdot \mathbf{e}_1 \sin\theta = "
+                             r"2 m g a \sin\theta \, \dot{\theta} = -\frac{d}{dt}(2 m g a \cos\theta)$")
 
 
 def _check_eq80_81():
@@ -261,7 +283,8 @@ def _check_text_after_80():
     rhs = paper.eq80_rhs(I1, I3).subs(rates).subs(NUMBERS)
     rhs = rhs.subs(c, sp.Rational(2, 5) - g / phidot**2)
     ok = same(rhs, sp.zeros(3, 1))
-    return decide(ok, show(sp.simplify(rhs).T), "zero", "Eq. 80 with psidot = phidot, thetadot = 0, cos = 2/5 - g/phidot^2")
+    return decide(ok, tex(sp.simplify(rhs)), "zero",
+                  r"Eq. 80 with $\dot{\psi} = \dot{\phi}$, $\dot{\theta} = 0$, $\cos\theta = 2/5 - g/\dot{\phi}^2$")
 
 
 def _cos_on_circle():
@@ -282,10 +305,12 @@ def _check_eq82():
     normal = sp.simplify(RPA.cross(2 * m * g * vertical_in_frame()).dot(E1))
     opposes = same(centripetal, 2 * m * a**2 * phidot**2 * (1 - rho) * s * (1 + c)) and same(normal, 2 * m * g * a * s)
     ok = len(sol) == 1 and same(sol[0], printed) and opposes
-    return decide(ok, f"cos(theta) = {show(sol)}; torque of the centripetal force {show(centripetal)} e1 against the normal "
-                      f"force's {show(normal)} e1",
-                  f"{show(printed)}; rho > 1: the centripetal torque opposes the normal force's, rho < 1 the reverse",
-                  "derived row 1 with psidot = rho phidot, thetadot = 0; the centripetal torque carries the sign of 1 - rho")
+    return decide(ok, ", ".join(equation(c, x) for x in sol) + "; torque of the centripetal force "
+                      rf"${latex(centripetal)} \, \mathbf{{e}}_1$ against the normal force's ${latex(normal)} \, \mathbf{{e}}_1$",
+                  f"{equation(c, printed)}; " r"$\rho > 1$: the centripetal torque opposes the normal force's, $\rho < 1$ "
+                  "the reverse",
+                  r"derived row 1 with $\dot{\psi} = \rho \dot{\phi}$, $\dot{\theta} = 0$; the centripetal torque carries "
+                  r"the sign of $1 - \rho$")
 
 
 def _check_rho_ranges():
@@ -299,11 +324,13 @@ def _check_rho_ranges():
     rate2 = sp.simplify(sleeping[0]) if len(sleeping) == 1 else None
     ok = same(at1, sp.Rational(2, 5)) and same(at54, 1) and bool(sp.simplify(increasing * (2 - rho) ** 2) > 0) \
         and rate2 is not None and same(rate2, g / (sp.Rational(12, 5) * rho - 3))
-    return decide(ok, f"phidot -> oo: cos(theta) = {show(high_spin)}: {at1} at rho = 1, {at54} at rho = 5/4, increasing "
-                      f"(d/drho = {show(increasing)}); CM circle radius {show(radius)} (a = 1), at most sin(theta)/4 here; "
-                      f"theta -> 0 needs phidot^2 = {show(rate2)}, finite iff rho > 5/4",
-                  "rho from 5/4 to 1: high-spin solutions with 0 < theta < cos^-1(2/5), small CM motion; rho > 5/4: "
-                  "theta ~ 0 with finite phidot", "derived row 1 with psidot = rho phidot, thetadot = 0")
+    return decide(ok, rf"$\dot{{\phi}} \to \infty$: {equation(c, high_spin)}: ${latex(at1)}$ at $\rho = 1$, "
+                      rf"${latex(at54)}$ at $\rho = 5/4$, increasing ($\frac{{d}}{{d\rho}} = {latex(increasing)}$); "
+                      rf"CM circle radius {tex(radius)} ($a = 1$), at most $\sin\theta / 4$ here; "
+                      rf"$\theta \to 0$ needs {equation(phidot**2, rate2)}, finite iff $\rho > 5/4$",
+                  r"$\rho$ from 5/4 to 1: high-spin solutions with $0 < \theta < \cos^{-1}(2/5)$, small CM motion; "
+                  r"$\rho > 5/4$: $\theta \approx 0$ with finite $\dot{\phi}$",
+                  r"derived row 1 with $\dot{\psi} = \rho \dot{\phi}$, $\dot{\theta} = 0$")
 
 
 def _check_minimum():
@@ -315,9 +342,10 @@ def _check_minimum():
         rmin = mpmath.findroot(lambda r: mpmath.diff(f, r), 3)
         fmin = f(rmin)
     ok = abs(rmin - mpmath.mpf("3.5")) < 1e-20 and abs(fmin - mpmath.mpf("1.94")) <= 0.005
-    return decide(ok, f"minimum of (phidot + psidot)/sqrt(g) on the theta -> 0 circles: {mpmath.nstr(fmin, 10)} at "
-                      f"rho = {mpmath.nstr(rmin, 10)}", "~1.94 sqrt(g) at rho = 3.5",
-                  "derived row 1 at cos(theta) = 1; tolerance: the printed digits")
+    return decide(ok, r"minimum of $(\dot{\phi} + \dot{\psi})/\sqrt{g}$ on the $\theta \to 0$ circles: "
+                      f"{mpmath.nstr(fmin, 10)} at $\\rho = {mpmath.nstr(rmin, 10)}$",
+                  r"$\approx 1.94 \sqrt{g}$ at $\rho = 3.5$",
+                  r"derived row 1 at $\cos\theta = 1$; tolerance: the printed digits")
 
 
 def claims() -> list:
@@ -418,7 +446,7 @@ def claims() -> list:
                      r"For $\rho > \frac{5}{4}$, we can find constant θ , circular CM motions with finite $\dot{\phi}$ and "
                      r"$\theta \approx 0$."),
               reading="high spin: g/phidot^2 -> 0 in Eq. 82"),
-        Claim("text-after-82b", "text after Eq. 82", d, "smallest phidot + psidot ~ 1.94 sqrt(g) at rho = 3.5",
+        Claim("text-after-82b", "text after Eq. 82", d, r"smallest $\dot{\phi} + \dot{\psi} \approx 1.94 \sqrt{g}$ at $\rho = 3.5$",
               _check_minimum, "numbers", "the printed digits; mpmath 40 digits",
               quote=r"The solution with the smallest $\dot{\phi} + \dot{\psi} \approx 1.94\sqrt{g}$ occurs at $\rho = 3.5$.",
               reading="among the theta ~ 0 circles of the sentence before (cos(theta) = 1 in Eq. 82); g is the scaled g/a"),

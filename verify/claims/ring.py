@@ -15,8 +15,9 @@ from models.common import PAPER_G
 from models.rolling import derive
 from models.symbols import g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot
 
+from .mathtext import equation, latex, tex
 from .base import RESULT, TYPO, Claim, decide, definition, rows_identity
-from .vectors import E1, E2, E3, c, omega_body, omega_body_dot, omega_frame, s, same, show, vertical_in_frame
+from .vectors import E1, E2, E3, c, omega_body, omega_body_dot, omega_frame, s, same, vertical_in_frame
 
 SECTION = "Thick ring (Eqs. 47-62)"
 I1, I3, h = ring.I1, ring.I3, ring.h
@@ -25,6 +26,7 @@ RP = -E2 - h * E3  # scaled: R = 1, h <- h/R
 RPK = -R * E2 - h * E3  # R and h kept
 GVEC = -g * vertical_in_frame()
 HORIZONTAL_AXLE = s * E3 - c * E2  # unit vector along the horizontal projection of e3; Z x it = e1
+L_PERP = sp.Symbol("L_perp")  # the horizontal part of L (Eqs. 19, 51)
 
 SCALED = "I <- I/(m R^2), g <- g/R, h <- h/R, as the paper states before Eq. 49 (so R = 1)"
 RING = ("the in-hand ring of the text before Fig. 9 (R = 3.66, h = 1.59, w = 0.5 cm as exact rationals: "
@@ -67,11 +69,11 @@ def _check_rims():
     acc = derive(I1, I3, ring.R2, ring.R3).accelerations[0].subs({phidot: 0, psidot: 0, thetadot: 0})
     restoring = same(acc, g * (h * s - c) / (I1 + 1 + h**2))
     ok = rims and only_axial and restoring
-    return decide(ok, f"lowest rim point: {show(lowest[-1].T)} while cos(theta) > 0, {show(lowest[1].T)} beyond pi/2; "
-                      f"the two contact points differ in velocity by w x 2h e3 = {show(both.T)}; at rest thetaddot = "
-                      f"{show(acc)}",
-                  "r_P = -R e2 -+ h e3 on either side of pi/2; no slip across the switch only for w along e3; "
-                  "stable teetering for |alpha| < tan^-1(h/R)",
+    return decide(ok, rf"lowest rim point: {tex(lowest[-1])} while $\cos\theta > 0$, {tex(lowest[1])} beyond $\pi/2$; "
+                      rf"the two contact points differ in velocity by $\omega \times 2h \, \mathbf{{e}}_3 = {latex(both)}$; "
+                      f"at rest {equation(thetaddot, acc)}",
+                  r"$r_P = -R \mathbf{e}_2 \mp h \mathbf{e}_3$ on either side of $\pi/2$; no slip across the switch only for "
+                  r"$\omega$ along $\mathbf{e}_3$; stable teetering for $\lvert \alpha \rvert < \tan^{-1}(h/R)$",
                   f"rims {rims}, switch needs w1 = w2 = 0 {only_axial}, restoring torque about P {restoring} "
                   "(thetaddot > 0 for cot^-1(h) < theta < pi/2, mirrored beyond)")
 
@@ -105,8 +107,9 @@ def _check_eq51():
     got = L.dot(HORIZONTAL_AXLE)
     printed = I3 * (psidot + phidot * c) * s - I1 * phidot * s * c
     ok = same(got, printed) and same(L.dot(E1), 0)
-    return decide(ok, show(got), show(printed), "horizontal component of I.w at constant theta, along the horizontal "
-                  "projection of the axle (L has no e1 part)")
+    return decide(ok, equation(L_PERP, got), equation(L_PERP, printed),
+                  r"horizontal component of $I \cdot \omega$ at constant $\theta$, along the horizontal projection of the "
+                  r"axle ($L$ has no $\mathbf{e}_1$ part)")
 
 
 def _steady_row1():
@@ -140,9 +143,10 @@ def _check_eq52_57():
     chain = (into, t52, radius, t53, same(e54, e55), same(e55, e56), same(e56, e57), same(e57, _steady_row1()))
     return decide(all(chain), "r_P x m (a_C + g Z) for the steady circle, R and h kept, and the derived row 1 at constant theta",
                   "Eqs. 52-57",
-                  "dL/dt = L_perp phidot e1, i.e. L_perp |phidot| into the page for phidot < 0; Eq. 52 is the torque along -e1 "
-                  "with psidot = -rho phidot / R; the CM circle has radius rho - (R cos - h sin); Eq. 53 is Eq. 52 scaled; "
-                  "Eqs. 54 = 55 = 56 = 57 = derived (steps: " + ", ".join(str(x) for x in chain) + ")")
+                  r"$\frac{dL}{dt} = L_\perp \dot{\phi} \, \mathbf{e}_1$, i.e. $L_\perp \lvert \dot{\phi} \rvert$ into the "
+                  r"page for $\dot{\phi} < 0$; Eq. 52 is the torque along $-\mathbf{e}_1$ with "
+                  r"$\dot{\psi} = -\rho \dot{\phi} / R$; the CM circle has radius $\rho - (R \cos\theta - h \sin\theta)$; "
+                  "Eq. 53 is Eq. 52 scaled; Eqs. 54 = 55 = 56 = 57 = derived (steps: " + ", ".join(str(x) for x in chain) + ")")
 
 
 def _check_other_rows_steady():
@@ -152,12 +156,13 @@ def _check_other_rows_steady():
     rates_free = not rows[1].has(phidot, psidot) and not rows[2].has(phidot, psidot)
     # rates zero would be no circle at all: Eq. 58 needs phidot^2 = g (cos - h sin) / [...] != 0 off cot^-1(h)
     ok = second and not rates_free
-    return decide(ok, f"rows 2-3 at thetadot = 0: {show(rows[1])} = 0, {show(rows[2])} = 0, so phiddot = {sol[phiddot]}, "
-                      f"psiddot = {sol[psiddot]}; the rows do not contain phidot, psidot (any constant rates satisfy them)",
-                  "thetadot = 0 then results in phidot = psidot = 0",
+    return decide(ok, rf"rows 2-3 at $\dot{{\theta}} = 0$: {equation(rows[1], 0)}, {equation(rows[2], 0)}, so "
+                      f"{equation(phiddot, sol[phiddot])}, {equation(psiddot, sol[psiddot])}; the rows do not contain "
+                      r"$\dot{\phi}$, $\dot{\psi}$ (any constant rates satisfy them)",
+                  r"$\dot{\theta} = 0$ then results in $\dot{\phi} = \dot{\psi} = 0$",
                   "the argument needs, and the rows give, vanishing second derivatives; the rates of the steady circle "
                   "are not zero (Eq. 58)",
-                  correction="thetadot = 0 then results in phiddot = psiddot = 0 (the rates stay constant)")
+                  correction=r"$\dot{\theta} = 0$ then results in $\ddot{\phi} = \ddot{\psi} = 0$ (the rates stay constant)")
 
 
 def _check_fig8_L2():
@@ -166,8 +171,8 @@ def _check_fig8_L2():
     L2 = (_I() * omega_body())[1]
     value = L2.subs(phidot, -P).subs(s, S)
     ok = same(L2, I1 * phidot * s) and bool(value < 0)
-    return decide(ok, f"L2 = {show(L2)} = {show(value)} < 0 for phidot = -P < 0, 0 < theta < pi/2",
-                  "L2 > 0 'would not actually be the case'", "confirms the caption's remark")
+    return decide(ok, rf"$L_2 = {latex(L2)} = {latex(value)} < 0$ for $\dot{{\phi}} = -P < 0$, $0 < \theta < \pi/2$",
+                  "$L_2 > 0$ 'would not actually be the case'", "confirms the caption's remark")
 
 
 def _check_eq58():
@@ -175,7 +180,8 @@ def _check_eq58():
     got = _steady_row1().subs(psidot, -rho * phidot)
     printed = (phidot**2 * (rho * ((I3 + 1) * s + h * c) - (h * sp.cos(2 * theta) + (I3 - I1 + 1 - h**2) * c * s))
                - g * (c - h * s))
-    return decide(same(got, printed), show(sp.factor(got)), show(printed), "derived row 1 with psidot = -rho phidot")
+    return decide(same(got, printed), tex(sp.factor(got)), tex(printed),
+                  r"derived row 1 with $\dot{\psi} = -\rho \dot{\phi}$")
 
 
 def _check_cm_rest():
@@ -184,8 +190,9 @@ def _check_cm_rest():
     v = -w.cross(RP)
     sol = sp.solve(v[0], rho)
     ok = len(sol) == 1 and same(sol[0], c - h * s) and same(v[1], 0) and same(v[2], 0)
-    return decide(ok, f"v_C = 0 iff rho = {sol}", "rho = cos(theta) - h sin(theta)",
-                  "v_C = -w x r_P with thetadot = 0; the CM circle's radius rho - (cos - h sin) is then zero")
+    return decide(ok, "$v_C = 0$ iff " + ", ".join(equation(rho, x) for x in sol), r"$\rho = \cos\theta - h \sin\theta$",
+                  r"$v_C = -\omega \times r_P$ with $\dot{\theta} = 0$; the CM circle's radius "
+                  r"$\rho - (\cos\theta - h \sin\theta)$ is then zero")
 
 
 def _series_row1():
@@ -198,18 +205,18 @@ def _series_row1():
 def _check_eq59():
     ser, Y = _series_row1()
     printed = -g - h * Y + (g * h + phidot**2 * (h**2 + I1) - Y) * theta
-    return decide(same(ser, printed), show(sp.collect(ser, theta)), show(printed),
-                  "Taylor series of derived row 1 to first order in theta, Y = phidot (phidot + psidot); Eq. 60 carries the "
-                  "factor (1 + I3)",
-                  correction="-g - h Y + (g h + phidot^2 (h^2 + I1) - (1 + I3) Y) theta")
+    return decide(same(ser, printed), tex(sp.collect(ser, theta)), tex(printed),
+                  r"Taylor series of derived row 1 to first order in $\theta$, $Y = \dot{\phi} (\dot{\phi} + \dot{\psi})$; "
+                  "Eq. 60 carries the factor $(1 + I_3)$",
+                  correction=r"$-g - h Y + \left(g h + \dot{\phi}^2 (h^2 + I_1) - (1 + I_3) Y\right) \theta$")
 
 
 def _check_eq60():
     ser, Y = _series_row1()
     printed = -g * (1 - h) + phidot**2 * (h**2 + I1) * theta - (h + (1 + I3) * theta) * Y
-    return decide(same(ser, printed), show(sp.collect(ser, theta)) + " = 0", show(printed) + " = 0",
-                  "the first-order series set to zero; g h theta is first order in theta, not a constant g h",
-                  correction="-g (1 - h theta) + phidot^2 (h^2 + I1) theta = (h + (1 + I3) theta) Y")
+    return decide(same(ser, printed), equation(sp.collect(ser, theta), 0), equation(printed, 0),
+                  r"the first-order series set to zero; $g h \theta$ is first order in $\theta$, not a constant $g h$",
+                  correction=r"$-g (1 - h \theta) + \dot{\phi}^2 (h^2 + I_1) \theta = \left(h + (1 + I_3) \theta\right) Y$")
 
 
 def _ring_numbers():
@@ -232,12 +239,12 @@ def _check_eq61():
     rel_printed = abs(printed / exact - 1)
     rel_leading = abs(leading / exact - 1)
     ok = rel_printed < 1e-4
-    return decide(ok, f"exact phidot at theta = 1e-6 (phidot + psidot cos = 0): {mpmath.nstr(exact, 15)}; "
-                      f"sqrt(g/((h^2+I1) theta)) is off by {mpmath.nstr(rel_leading, 3)}",
+    return decide(ok, r"exact $\dot{\phi}$ at $\theta = 10^{-6}$ ($\dot{\phi} + \dot{\psi} \cos\theta = 0$): "
+                      f"{mpmath.nstr(exact, 15)}; " r"$\sqrt{g/((h^2 + I_1) \theta)}$ is off by " f"{mpmath.nstr(rel_leading, 3)}",
                   f"Eq. 61: {mpmath.nstr(printed, 15)} (off by {mpmath.nstr(rel_printed, 3)})",
-                  "the factor (1 - h) comes from the slip in Eq. 60; tolerance 1e-4 relative at theta = 1e-6 "
-                  "(the next order is O(theta))",
-                  correction="phidot = sqrt(g (1 - h theta) / ((h^2 + I1) theta)) -> sqrt(g / ((h^2 + I1) theta)) "
+                  r"the factor $(1 - h)$ comes from the slip in Eq. 60; tolerance $10^{-4}$ relative at $\theta = 10^{-6}$ "
+                  r"(the next order is $O(\theta)$)",
+                  correction=r"$\dot{\phi} = \sqrt{g (1 - h \theta) / ((h^2 + I_1) \theta)} \to \sqrt{g / ((h^2 + I_1) \theta)}$ "
                              "on the family with no vertical spin")
 
 
@@ -248,15 +255,16 @@ def _check_straight_line():
     state = {phidot: 0, thetadot: 0}
     at_rest = [sp.simplify(e.subs(state).subs(theta, sp.acot(h))) for e in acc]
     ok = above and all(same(e, 0) for e in at_rest)
-    return decide(ok, f"horizontal part of r_P = -(cos - h sin) (cos e2 - sin e3); derived accelerations at phidot = "
-                      f"thetadot = 0, theta = cot^-1(h), any psidot: {at_rest}",
-                  "cos(theta) - h sin(theta) = 0, a solution for any psidot", "exact, for every psidot")
+    return decide(ok, r"horizontal part of $r_P = -(\cos\theta - h \sin\theta) (\cos\theta \, \mathbf{e}_2 - "
+                      r"\sin\theta \, \mathbf{e}_3)$; derived accelerations at $\dot{\phi} = \dot{\theta} = 0$, "
+                      rf"$\theta = \cot^{{-1}} h$, any $\dot{{\psi}}$: {tex(sp.Matrix(at_rest))}",
+                  r"$\cos\theta - h \sin\theta = 0$, a solution for any $\dot{\psi}$", r"exact, for every $\dot{\psi}$")
 
 
 def _check_eq62():
     row = _steady_row1().subs(psidot, 0)
     printed = -phidot**2 * (s * c * (1 + I3 - I1 - h**2) + h * sp.cos(2 * theta)) - g * (c - h * s)
-    return decide(same(row, printed), show(row), show(printed), "derived row 1 with psidot = 0, theta constant")
+    return decide(same(row, printed), tex(row), tex(printed), r"derived row 1 with $\dot{\psi} = 0$, $\theta$ constant")
 
 
 def _eq62_root(rate):
@@ -279,15 +287,16 @@ def _check_eq62_range():
     formulas = (abs(slow - printed_slow) < 1e-9, abs(fast - printed_fast) < 1e-9)
     numbers = (abs(slow - mpmath.mpf("1.16")) <= 0.005, abs(fast - mpmath.mpf("1.32")) <= 0.005)
     ok = ranges and all(formulas) and all(numbers)
-    return decide(ok, f"roots of the derived row 1 (psidot = 0): slow spin {mpmath.nstr(slow, 6)}, fast spin "
+    return decide(ok, r"roots of the derived row 1 ($\dot{\psi} = 0$): slow spin " f"{mpmath.nstr(slow, 6)}, fast spin "
                       f"{mpmath.nstr(fast, 6)}, increasing in between ({ranges})",
-                  f"cot^-1(h) = {mpmath.nstr(printed_slow, 6)}, tan^-1(-2h/(1+I3-I1+h^2))/2 = {mpmath.nstr(printed_fast, 6)}; "
+                  rf"$\cot^{{-1}} h = {mpmath.nstr(printed_slow, 6)}$, "
+                  rf"$\tan^{{-1}}\left(-2h/(1 + I_3 - I_1 + h^2)\right)/2 = {mpmath.nstr(printed_fast, 6)}$; "
                   "'between 1.16 and 1.32'",
-                  f"the fast-spin limit is tan(2 theta) = -2h/(1 + I3 - I1 - h^2); formulas (slow, fast) {formulas}, "
-                  f"printed numbers (1.16, 1.32) {numbers} to their last digit; 1.32 is the value of the printed (+h^2) "
+                  r"the fast-spin limit is $\tan 2\theta = -2h/(1 + I_3 - I_1 - h^2)$; " f"formulas (slow, fast) {formulas}, "
+                  f"printed numbers (1.16, 1.32) {numbers} to their last digit; 1.32 is the value of the printed ($+h^2$) "
                   "formula",
-                  correction=f"fast spin: theta0 = (pi - tan^-1(2h/(1 + I3 - I1 - h^2)))/2 = {mpmath.nstr(fast, 4)}; "
-                             "theta0 lies between 1.16 and 1.25")
+                  correction=r"fast spin: $\theta_0 = \left(\pi - \tan^{-1}\left(2h/(1 + I_3 - I_1 - h^2)\right)\right)/2 = "
+                             f"{mpmath.nstr(fast, 4)}$; " r"$\theta_0$ lies between 1.16 and 1.25")
 
 
 def _annulus_inertia():
@@ -311,8 +320,9 @@ def _check_ring_numbers():
     printed = [0.8727, 0.4993, 0.4344]
     numbers = all(abs(a - b) <= 0.5e-4 for a, b in zip(got, printed))
     return decide(forms and numbers, ", ".join(f"{x:.6f}" for x in got),
-                  "I3 = (1 + (1 - w/R)^2)/2 = 0.8727, I1 = (3(1 + (1 - w/R)^2) + (2h/R)^2)/12 = 0.4993, h/R = 0.4344",
-                  "moments of a hollow cylinder (outer radius R = 3.66, wall w = 0.5, height 2h = 3.18 cm) by integration; "
+                  r"$I_3 = \left(1 + (1 - w/R)^2\right)/2 = 0.8727$, $I_1 = \left(3 (1 + (1 - w/R)^2) + (2h/R)^2\right)/12 = 0.4993$, "
+                  "$h/R = 0.4344$",
+                  "moments of a hollow cylinder (outer radius $R = 3.66$, wall $w = 0.5$, height $2h = 3.18$ cm) by integration; "
                   f"the printed formulas equal the integrals symbolically ({forms}); the numbers to half a unit of the "
                   f"last printed digit ({numbers})")
 
@@ -324,9 +334,9 @@ def _check_fig10_angle():
         above = mpmath.findroot(lambda t: mpmath.cos(t) - hh * mpmath.sin(t), mpmath.mpf(1))
         formula = mpmath.acot(hh)
     ok = abs(above - formula) < 1e-20 and abs(above - mpmath.mpf("1.161")) <= 0.5e-3
-    return decide(ok, f"C above P at theta = {mpmath.nstr(above, 8)}; cot^-1 h = {mpmath.nstr(formula, 8)}",
-                  "theta = cot^-1 h = 1.161", "tolerance half a unit of the last printed digit",
-                  correction=f"cot^-1 h = {mpmath.nstr(formula, 4)}")
+    return decide(ok, rf"$C$ above $P$ at $\theta = {mpmath.nstr(above, 8)}$; $\cot^{{-1}} h = {mpmath.nstr(formula, 8)}$",
+                  r"$\theta = \cot^{-1} h = 1.161$", "tolerance half a unit of the last printed digit",
+                  correction=rf"$\cot^{{-1}} h = {mpmath.nstr(formula, 4)}$")
 
 
 def _fig11_check(rate, printed_text, printed_rate=None):
@@ -336,11 +346,12 @@ def _fig11_check(rate, printed_text, printed_rate=None):
         angle_ok = abs(root - mpmath.mpf(printed_text)) <= 0.5e-3
         rate_ok = printed_rate is None or abs(rate - mpmath.mpf(printed_rate)) <= 0.05
         offset = mpmath.mpf(printed_text) - root
-        shown_rate = f"sqrt({PAPER_G}) = {mpmath.nstr(rate, 6)} (printed {printed_rate}); " if printed_rate else ""
-        return decide(angle_ok and rate_ok, f"{shown_rate}equilibrium angle (root of the derived row 1, psidot = 0) at "
-                                            f"phidot0 = {mpmath.nstr(rate, 6)}: {mpmath.nstr(root, 8)}",
-                      f"theta0 = {printed_text}", "tolerance half a unit of the last printed digit",
-                      correction=f"theta0 = {mpmath.nstr(root, 4)}; the printed {printed_text} is {mpmath.nstr(offset, 3)} "
+        shown_rate = f"$\\sqrt{{{PAPER_G}}} = {mpmath.nstr(rate, 6)}$ (printed {printed_rate}); " if printed_rate else ""
+        return decide(angle_ok and rate_ok, f"{shown_rate}equilibrium angle (root of the derived row 1, "
+                                            r"$\dot{\psi} = 0$) at " f"$\\dot{{\\phi}}_0 = {mpmath.nstr(rate, 6)}$: "
+                                            f"{mpmath.nstr(root, 8)}",
+                      f"$\\theta_0 = {printed_text}$", "tolerance half a unit of the last printed digit",
+                      correction=f"$\\theta_0 = {mpmath.nstr(root, 4)}$; the printed {printed_text} is {mpmath.nstr(offset, 3)} "
                                  "away from it" + (", i.e. the equilibrium plus 0.01 to the printed digits (a start near, "
                                  "not at, equilibrium, as in Fig. 16 LHS), printed as the equilibrium angle"
                                  if abs(offset - mpmath.mpf("0.01")) <= 0.5e-3 else ""))
@@ -423,7 +434,7 @@ def claims() -> list:
               quote=(r"Defining $Y \equiv \left[\dot{\phi}(\dot{\phi} + \dot{\psi}) \right]$ and seeking when the 1 component is zero results:",
                      r"-g(1 - h) + \dot{\phi}^2(h^2 + I_1)\theta = (h + (1 + I_3)\theta)Y"),
               reading="to first order in theta, as Eq. 59"),
-        Claim("eq-61", "Eq. 61", d, "phidot = sqrt(g (1 - h) / ((h^2 + I1) theta))", _check_eq61, "numbers",
+        Claim("eq-61", "Eq. 61", d, r"$\dot{\phi} = \sqrt{g (1 - h) / ((h^2 + I_1) \theta)}$", _check_eq61, "numbers",
               "1e-4 relative at theta = 1e-6 (next order O(theta)); mpmath 50 digits",
               known_failure="spurious factor (1 - h)", severity=RESULT,
               quote=(r"If Y is small compared to g (basically because $|\dot{\phi} + \dot{\psi}| \ll |\dot{\phi}|$) we obtain the equivalent of Eq. (45):",
@@ -458,7 +469,7 @@ def claims() -> list:
         Claim("fig-10-angle", "Fig. 10 (angle)", d, "theta = cot^-1 h = 1.161", _check_fig10_angle, "numbers",
               "half a unit of the last printed digit",
               quote=r"directly above the contact ($\theta = \cot^{-1} h = 1.161$)", reading=RING),
-        Claim("fig-11-lhs-angle", "Fig. 11 LHS (angle)", d, "equilibrium angle theta0 = 1.225 at phidot0 = sqrt(g/R) = 31.3",
+        Claim("fig-11-lhs-angle", "Fig. 11 LHS (angle)", d, r"equilibrium angle $\theta_0 = 1.225$ at $\dot{\phi}_0 = \sqrt{g/R} = 31.3$",
               _fig11_check(mpmath.sqrt(PAPER_G), "1.225", "31.3"), "numbers", "half a unit of the last printed digit",
               known_failure="1.225 is 0.010 above the equilibrium angle 1.2146", severity=RESULT,
               quote=(r"where the ring is started near its equilibrium angle θ_0 , with $\dot{\psi}_0 = 0$",

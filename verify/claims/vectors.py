@@ -20,10 +20,6 @@ def same(a, b) -> bool:
     return all(sp.simplify(sp.expand_trig(sp.expand(x - y))) == 0 for x, y in zip(a, b))
 
 
-def show(expr) -> str:
-    return sp.sstr(expr)
-
-
 @lru_cache(maxsize=None)
 def euler_angles_omega():
     """omega and Omega from the rotation matrices, independent of Eqs. 13-16.

@@ -68,9 +68,10 @@ def _check_fig3_lhs():
         return undecided("the measures cannot see a wobble about pi/2 even where the linear theory has one",
                          "wobbles above and below pi/2", detail, measures=control.measures())
     ev = _verdict(reads, (True, True), "", "the disk wobbles above and below theta = pi/2 (alpha = .1, 0.1% above Eq. 32)",
-                  detail, correction="with alpha0 = 0.1 the disk does not wobble about pi/2 (for phidot0 = 0 or "
-                                     "2 psidot0 alpha0): theta stays above pi/2 and phi grows by 50-110 rad in 10 s; the "
-                                     "described wobble needs a small deviation (alpha0 = 0.001 does it)",
+                  detail, correction=r"with $\alpha_0 = 0.1$ the disk does not wobble about $\pi/2$ (for $\dot{\phi}_0 = 0$ "
+                                     r"or $2 \dot{\psi}_0 \alpha_0$): $\theta$ stays above $\pi/2$ and $\phi$ grows by "
+                                     r"50-110 rad in 10 s; the described wobble needs a small deviation ($\alpha_0 = 0.001$ "
+                                     "does it)",
                   figures=(FigureData("fig-03", "Fig. 3: straight-line rolling near the Eq. 32 threshold",
                                       (r["lhs0"], r["lhs1"], r["rhs"])),))
     return ev
@@ -95,8 +96,8 @@ def _check_fig3_rhs():
                          detail, measures=measures)
     return decide(sense.sign < 0 and mirror.sign == -sense.sign, f"the CM circles {sense.word()}",
                   "a generally clockwise orbit", detail,
-                  correction=f"the orbit is {sense.word()} seen from above, in the sense of phidot (phi increasing); "
-                             "clockwise would need phi decreasing", measures=measures)
+                  correction=f"the orbit is {sense.word()} seen from above, in the sense of " r"$\dot{\phi}$ ($\phi$ "
+                             r"increasing); clockwise would need $\phi$ decreasing", measures=measures)
 
 
 def _check_fig4():

@@ -43,8 +43,8 @@ def _check_fig15_lhs():
     th, lhs, rhs = _fig15_runs()
     read = _static(lhs, "static, no CM motion", 1e-10, 1e-10)
     return _verdict([read], (True,), "", "all quantities static with no CM motion",
-                    f"phidot0 = psidot0 = sqrt(2.6 g), theta0 = {th:.6f} from Eq. 72; 5 s; tolerance 1e-10 (double, "
-                    "steady state)", figures=(FigureData("fig-15", "Fig. 15: hurricane balls near the slow-spin limit",
+                    rf"$\dot{{\phi}}_0 = \dot{{\psi}}_0 = \sqrt{{2.6 g}}$, $\theta_0 = {th:.6f}$ from Eq. 72; 5 s; tolerance "
+                    r"$10^{-10}$ (double, steady state)", figures=(FigureData("fig-15", "Fig. 15: hurricane balls near the slow-spin limit",
                                                          (lhs, rhs)),))
 
 
@@ -67,7 +67,7 @@ def _check_fig16_lhs():
     th, lhs, rhs = _fig16_runs()
     t, thl, *_ = _arrays(lhs)
     return _verdict([oscillates(t, thl, _completed(lhs))], (True,), "", "(same as previous) oscillates about the static "
-                    "solution", f"phidot0 = psidot0 = sqrt(25 g), theta0 = {th:.6f} + 0.01 (Eq. 72); 3 s",
+                    "solution", rf"$\dot{{\phi}}_0 = \dot{{\psi}}_0 = \sqrt{{25 g}}$, $\theta_0 = {th:.6f} + 0.01$ (Eq. 72); 3 s",
                     figures=(FigureData("fig-16", "Fig. 16: hurricane balls at phidot0 = sqrt(25 g)", (lhs, rhs)),))
 
 
@@ -134,7 +134,7 @@ def _fig18_runs():
 def _check_fig18_lhs():
     r = _fig18_runs()
     t, th, *_ = _arrays(r[0.98])
-    return _verdict([oscillates(t, th, _completed(r[0.98]))], (True,), "", "phidot0 = .98 sqrt(g/a): theta oscillates",
+    return _verdict([oscillates(t, th, _completed(r[0.98]))], (True,), "", r"$\dot{\phi}_0 = .98 \sqrt{g/a}$: $\theta$ oscillates",
                     "theta0 'near 0' read as 0.01 (not stated); 10 s",
                     figures=(FigureData("fig-18", "Fig. 18: sleeping hurricane balls, psidot0 = phidot0",
                                         (r[0.98], r[0.97], r["small"])),))
@@ -154,10 +154,12 @@ def _check_fig18_rhs():
         return _verdict([out, leave], (True, True), "", "the CM spirals outward; theta eventually exceeds pi/2", detail)
     thr = r["threshold"]
     return qualify("; ".join((out.text(), leave.text())),
-                   "phidot0 = .97 sqrt(g/a): the CM spirals outward; theta eventually exceeds pi/2 (unlike .98)", detail,
-                   f"the exact linear threshold of the sleeping motion is omega3^2 > 3.75 g/a, i.e. phidot0 = psidot0 > "
-                   f"{thr:.6f} sqrt(g/a), so .97 is linearly stable; it spirals out within 10 s only from a finite start "
-                   f"theta0 > {hi:.3g} rad (bisection: stays from {lo:.3g}); the caption's 'near 0' must be at least that",
+                   r"$\dot{\phi}_0 = .97 \sqrt{g/a}$: the CM spirals outward; $\theta$ eventually exceeds $\pi/2$ "
+                   "(unlike .98)", detail,
+                   r"the exact linear threshold of the sleeping motion is $\omega_3^2 > 3.75 g/a$, i.e. "
+                   rf"$\dot{{\phi}}_0 = \dot{{\psi}}_0 > {thr:.6f} \sqrt{{g/a}}$, so .97 is linearly stable; it spirals out "
+                   rf"within 10 s only from a finite start $\theta_0 > {hi:.3g}$ rad (bisection: stays from {lo:.3g}); the "
+                   "caption's 'near 0' must be at least that",
                    measures=out.measures() + leave.measures())
 
 
@@ -172,9 +174,9 @@ def _fig19_runs():
 def _check_fig19_lhs():
     r = _fig19_runs()
     t, th, *_ = _arrays(r[1.95])
-    return _verdict([oscillates(t, th, _completed(r[1.95]))], (True,), "", "psidot0 = 1.95 sqrt(g/a): theta oscillates",
-                    "theta0 = 0.01 (not stated), phidot0 = 0; 10 s. 1.95 is above the linear threshold omega3 = 1.9365 "
-                    "sqrt(g/a)", figures=(FigureData("fig-19", "Fig. 19: sleeping hurricane balls, phidot0 = 0",
+    return _verdict([oscillates(t, th, _completed(r[1.95]))], (True,), "", r"$\dot{\psi}_0 = 1.95 \sqrt{g/a}$: $\theta$ oscillates",
+                    r"$\theta_0 = 0.01$ (not stated), $\dot{\phi}_0 = 0$; 10 s. 1.95 is above the linear threshold "
+                    r"$\omega_3 = 1.9365 \sqrt{g/a}$", figures=(FigureData("fig-19", "Fig. 19: sleeping hurricane balls, phidot0 = 0",
                                                      (r[1.95], r[1.9])),))
 
 
@@ -184,9 +186,9 @@ def _check_fig19_rhs():
     t, th, x, y, *_ = _arrays(d)
     return _verdict([spirals_out(t, x, y, th), leaves(d.outcome, "upper_ball_contact", d.t[-1], free.t, free.theta,
                                                       math.pi / 2, name="theta eventually exceeds pi/2")], (True, True), "",
-                    "psidot0 = 1.9 sqrt(g/a): the CM spirals outward; theta eventually exceeds pi/2",
-                    "theta0 = 0.01 (not stated), phidot0 = 0; 10 s. 1.9 is below the linear threshold omega3 = 1.9365 "
-                    "sqrt(g/a): the linear instability")
+                    r"$\dot{\psi}_0 = 1.9 \sqrt{g/a}$: the CM spirals outward; $\theta$ eventually exceeds $\pi/2$",
+                    r"$\theta_0 = 0.01$ (not stated), $\dot{\phi}_0 = 0$; 10 s. 1.9 is below the linear threshold "
+                    r"$\omega_3 = 1.9365 \sqrt{g/a}$: the linear instability")
 
 
 def _check_fig19_sum():
@@ -205,11 +207,11 @@ def _check_fig19_sum():
                     abs(fit[0]) * 10 < 0.1 * np.ptp(ps)))
     del r
     return _verdict([read], (True,), "", "psi + phi ~ constant while psi and phi separately vary wildly",
-                    f"the LHS run (psidot0 = 1.95 sqrt(g), theta0 = 0.01); psidot spans {np.ptp(psd):.2f} rad/s, "
-                    f"phidot + psidot only {rate_sum:.3f} rad/s",
-                    correction="near theta = 0 phi + psi is the spin angle and grows steadily (a straight line in t); what "
-                               "is nearly constant is the rate phidot + psidot, while phidot and psidot separately vary "
-                               "wildly")
+                    r"the LHS run ($\dot{\psi}_0 = 1.95 \sqrt{g}$, $\theta_0 = 0.01$); $\dot{\psi}$ spans "
+                    rf"{np.ptp(psd):.2f} rad/s, $\dot{{\phi}} + \dot{{\psi}}$ only {rate_sum:.3f} rad/s",
+                    correction=r"near $\theta = 0$, $\phi + \psi$ is the spin angle and grows steadily (a straight line "
+                               r"in $t$); what is nearly constant is the rate $\dot{\phi} + \dot{\psi}$, while $\dot{\phi}$ "
+                               r"and $\dot{\psi}$ separately vary wildly")
 
 
 def _printed_components(number: int) -> int:
@@ -241,10 +243,14 @@ def _check_fig19_citation():
     third = sp.simplify(paper.eq80_81_rows(I1, I3)[2].subs(theta, 0))
     spin = sp.simplify(third - I3 * (phiddot + psiddot)) == 0
     ok = n82 >= 3
+    from ..mathtext import equation
+
     return decide(ok, f"as printed, Eq. 81 has {n81} components and Eq. 82 has {n82}; the third component of Eqs. 80-81 "
-                      f"at theta = 0 is {third} = 0" + (": phidot + psidot is constant there" if spin else ""),
+                      f"at $\\theta = 0$ is {equation(third, 0)}"
+                      + (r": $\dot{\phi} + \dot{\psi}$ is constant there" if spin else ""),
                   "the third component of Eqs. (81-2)", "components counted in the paper's displayed equations",
-                  correction="the third component of Eqs. (80-81); it gives phidot + psidot ~ constant near theta = 0")
+                  correction=r"the third component of Eqs. (80-81); it gives $\dot{\phi} + \dot{\psi} \approx$ constant "
+                             r"near $\theta = 0$")
 
 
 @lru_cache(maxsize=None)

@@ -176,7 +176,8 @@ def _check_fig11_lhs():
     r = _fig11_runs()
     t, th, *_ = _arrays(r["lhs"])
     read = oscillates(t, th, _completed(r["lhs"]))
-    return _verdict([read], (True,), "", "theta oscillates", "phidot0 = sqrt(g/R), theta0 = 1.225, psidot0 = 0; 20 s; "
+    return _verdict([read], (True,), "", "theta oscillates",
+                    r"$\dot{\phi}_0 = \sqrt{g/R}$, $\theta_0 = 1.225$, $\dot{\psi}_0 = 0$; 20 s; "
                     f"the paper's printed ring (the steady angle at this rate is {float(_fig11_lhs_root()):.4f})",
                     figures=(FigureData("fig-11", "Fig. 11: ring 'diameter spin'", (r["lhs"], r["printed"], r["up"])),))
 
@@ -198,7 +199,7 @@ def _check_fig11_rhs():
               f"1e-4 above it the ring leaves at t = {r['up'].t[-1]:.2f} s ({r['up'].outcome})")
     return _verdict([read], (True,), "", "theta quickly exceeds the limit of pi/2", detail,
                     correction=f"from the printed start the ring stays on its rim for 20 s: 25.7 is above the linear "
-                               f"threshold phidot0 = {r['threshold']:.6f} (the equilibrium is linearly stable), and the "
+                               f"threshold $\\dot{{\\phi}}_0 = {r['threshold']:.6f}$ (the equilibrium is linearly stable), and the "
                                f"ring leaves within 20 s only from starts more than {hi:.3g} rad above the equilibrium "
                                f"(bisection: stays at {lo:.3g}); of the starts that print as 1.205, only those in "
                                f"[{r['root'] + hi:.6f}, 1.2055) -- {(1.2055 - r['root'] - hi) / 1e-3:.0%} of them -- "
@@ -236,7 +237,7 @@ def _check_fig12():
     measures = (("largest distance between the A and CM paths, / CM path extent", f"{separation / e_cm:.3f}"),
                 ("path length of A / path length of the CM", f"{l_a / l_cm:.3f}"))
     return decide(ok, f"the point A path runs up to {separation:.3f} R from the CM path (extents {e_cm:.2f} R and {e_a:.2f} R, "
-                      f"lengths {l_cm:.2f} R and {l_a:.2f} R); g = 1 with t sqrt(g/R) reproduces theta(t) to {scale_err:.1e} "
+                      f"lengths {l_cm:.2f} R and {l_a:.2f} R); $g = 1$ with $t \\sqrt{{g/R}}$ reproduces $\\theta(t)$ to {scale_err:.1e} "
                       f"(interpolated between outputs). But the normal force N/(Mg) falls to {normal.min():.2f}: with the "
                       f"contact enforced the run stops at t = {float(first.t[-1]) * 1e3:.2f} ms ({first.outcome}); the ring "
                       "would leave the plane, and the rolling solution beyond that is not physical",
