@@ -1,7 +1,7 @@
 """A claim and its evaluation as a results.json record: everything the report shows of it, as data."""
 from __future__ import annotations
 
-from ..claims.base import ERRATUM, NOT_CHECKABLE, Claim, Evaluation, quote_fragments
+from ..claims.base import ERRATUM, NOT_CHECKABLE, Claim, Evaluation, quote_found, quote_fragments
 
 
 def claim_record(claim: Claim, ev: Evaluation, images=()) -> dict:
@@ -10,6 +10,8 @@ def claim_record(claim: Claim, ev: Evaluation, images=()) -> dict:
     rec = {"id": claim.id, "source": claim.source, "section": claim.section, "statement": claim.statement,
            "quote": list(quote_fragments(claim.quote)), "verdict": ev.verdict, "expected": ev.expected,
            "observed": ev.observed, "detail": ev.detail}
+    if not quote_found(claim.quote):  # only with another paper (VERIFY_PAPER): the quote is not in it
+        rec["quote_not_in_paper"] = True
     if claim.reading:
         rec["reading"] = claim.reading
     rec["method"] = claim.method

@@ -128,10 +128,12 @@ def _cpu_model() -> str:
     return platform.processor()
 
 
-def job_key(name: str, entries, args, extra_files=()) -> str:
-    """The sha256 naming one job's result: see the module docstring for what goes in."""
+def job_key(name: str, entries, args, extra_files=(), code: str = "") -> str:
+    """The sha256 naming one job's result: see the module docstring for what goes in; ``code`` is
+    the source of the job's own function."""
     h = hashlib.sha256()
-    h.update(json.dumps({"job": name, "args": args, "environment": environment()}, sort_keys=True).encode())
+    h.update(json.dumps({"job": name, "args": args, "environment": environment(), "code": code},
+                        sort_keys=True).encode())
     for path in files_of(entries, extra_files):
         h.update(str(path.relative_to(ROOT) if path.is_relative_to(ROOT) else path).encode() + b"\0")
         h.update(_file_digest(path).encode())

@@ -51,8 +51,10 @@ def registry() -> list:
     from ..studies.retrograde import MECHANISMS
     from ..studies.summary import MAPS, THRESHOLD_CASES
 
+    from ..claims.base import PAPER_FILE
+
     jobs = [Job(f"claims/{m}", "claims_job", (m,), (f"verify.claims.{m}", "verify.report.claim_records",
-                                                   "verify.report.figures")) for m in SECTION_MODULES]
+                                                   "verify.report.figures"), (str(PAPER_FILE),)) for m in SECTION_MODULES]
     jobs += [Job(f"conservation/{m}", "conservation_job", (m,), ("verify.studies.conservation",))
              for m in conservation_models()]
     jobs += [Job(f"thresholds/{_case_name(*case)}", "threshold_job", case, ("verify.studies.summary",))
@@ -84,14 +86,19 @@ def _case_name(model: str, motion: str, params: dict) -> str:
     return f"{model}-{motion}-{tag}"
 
 
-def run(job: Job) -> JobOutput:
-    """Run one job in this process (``function``: a name in this module, or ``package.module:name``)."""
+def function_of(job: Job):
+    """The job's function (``function``: a name in this module, or ``package.module:name``)."""
     if ":" in job.function:
         import importlib
 
         module, _, name = job.function.partition(":")
-        return getattr(importlib.import_module(module), name)(*job.args)
-    return globals()[job.function](*job.args)
+        return getattr(importlib.import_module(module), name)
+    return globals()[job.function]
+
+
+def run(job: Job) -> JobOutput:
+    """Run one job in this process."""
+    return function_of(job)(*job.args)
 
 
 # --- the job functions -----------------------------------------------------------------------

@@ -24,6 +24,9 @@ def claim_markdown(rec: dict) -> list:
     """One claim: heading (anchored by the claim's id), the quote, the verdict and the evidence, its figures."""
     lines = [f'### <a id="{rec["id"]}"></a>{text(rec["source"])}: {verdict_label(rec)}', ""]
     lines += quote(rec["quote"]) + [""]
+    if rec.get("quote_not_in_paper"):
+        lines += ["**This quote is not in the paper the report was made from** (`VERIFY_PAPER`): the verdict is "
+                  "about the words quoted here.", ""]
     fields = [("verdict", verdict_label(rec) + (f": {SEVERITY_WORDS[rec['severity']]}" if rec.get("severity") else "")),
               ("read as", rec.get("reading")), ("independent route", rec["expected"]), ("the paper", rec["observed"]),
               ("corrected", rec.get("correction")), ("qualification", rec.get("qualification")),

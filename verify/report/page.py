@@ -91,7 +91,7 @@ def render_html(results: dict, images: dict, benchmarks: Optional[dict] = None) 
             cards.append({
                 "id": rec["id"], "source": rec["source"], "verdict": rec["verdict"], "label": verdict_label(rec),
                 "severity_words": SEVERITY_WORDS.get(rec.get("severity"), ""),
-                "quote": r.block("\n".join(quote(rec["quote"]))),
+                "quote": r.block("\n".join(quote(rec["quote"]))), "quote_missing": rec.get("quote_not_in_paper", False),
                 "fields": [(name, r.inline(text(value))) for name, value in fields if value],
                 "figures": [{"src": data_uri(f["file"], images[f["file"]]) if f["file"] in images else None,
                              "alt": f["alt"], "title": f["title"], "file": f["file"]} for f in rec.get("figures", ())],

@@ -9,6 +9,7 @@ progress line per job, with its time, and a total.
 """
 from __future__ import annotations
 
+import inspect
 import json
 import multiprocessing
 import os
@@ -38,8 +39,9 @@ class Outcome:
 
 
 def key_of(job: Job) -> str:
-    # the job functions' own file counts, not its imports (each job names the modules it uses)
-    return job_key(job.name, job.modules, list(job.args), (*job.files, jobs_module.__file__))
+    # the job function's own source counts, not the rest of jobs.py nor its imports (each job
+    # names the modules it uses)
+    return job_key(job.name, job.modules, list(job.args), job.files, inspect.getsource(jobs_module.function_of(job)))
 
 
 def _work(job: Job):
