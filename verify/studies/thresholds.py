@@ -285,6 +285,21 @@ def _sleeping(name, model, subs, shown, dps) -> Threshold:
 GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
 
 
+@lru_cache(maxsize=None)
+def _exact_memo(name: str, key: tuple) -> dict:
+    model = get_model(name)
+    subs = exact_parameters(model, {k: v for k, _, v in key})
+    return {p.name: subs[p.symbol] for p in model.parameters}
+
+
+def _steady(name, motion, rate, params) -> dict:
+    """:func:`models.steady.steady_state` with the parameters read (``sp.nsimplify``, ~40 ms for the
+    ring's three) once per set: handed on as the exact numbers it reads them as, every parameter
+    given, so its result is the same dict."""
+    key = _params_key(params)
+    return steady_state(name, motion, rate, params if key is None else _exact_memo(name, key))
+
+
 def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
     """(outcome, theta - theta_steady on the grid) of the full equations under the protocol of :func:`grows`.
 
@@ -314,21 +329,6 @@ def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
     run leaves the model's domain, within ``t_end``."""
     outcome, dev = nonlinear_deviation(name, motion, rate, tilt, params, t_end)
     return outcome != "ok" or dev > GROWTH * float(tilt)
-
-
-@lru_cache(maxsize=None)
-def _exact_memo(name: str, key: tuple) -> dict:
-    model = get_model(name)
-    subs = exact_parameters(model, {k: v for k, _, v in key})
-    return {p.name: subs[p.symbol] for p in model.parameters}
-
-
-def _steady(name, motion, rate, params) -> dict:
-    """:func:`models.steady.steady_state` with the parameters read (``sp.nsimplify``, ~40 ms for the
-    ring's three) once per set: handed on as the exact numbers it reads them as, every parameter
-    given, so its result is the same dict."""
-    key = _params_key(params)
-    return steady_state(name, motion, rate, params if key is None else _exact_memo(name, key))
 
 
 def _grid(t_end, n: int = 401):
@@ -369,13 +369,22 @@ def linear_deviation(name, motion, rate, tilt, params=None, t_end="10", n: int =
     with mpmath.workdps(30):
         tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
         if motion == "sleeping":
-            A, B = f(rate)
-            root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
-            l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
-            v0 = 1j * mpmath.mpf(phidot0) * tilt
-            c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
-            return float(max(abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t)) for t in times))
+            value, _ = _sleeping_solution(f, rate, tilt, phidot0, times[-1])
+            return float(max(value(t) for t in times))
     return float(max(abs(v) for v in linear_path(name, motion, rate, tilt, params, t_end, n)))
+
+
+def _sleeping_solution(f, rate, tilt, phidot0, t_max):
+    """(t -> |u(t)|, a bound on |u| for 0 <= t <= t_max) of the sleeping motion's u'' = A u + i B u'
+    (:func:`linear_deviation`), as 30-digit mpmath numbers; call it, and the function it returns,
+    under ``workdps(30)``.  u = c1 exp(l1 t) + c2 exp(l2 t), so |u| <= sum |c_k| exp(max(Re l_k, 0) t_max)."""
+    A, B = f(rate)
+    root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
+    l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
+    v0 = 1j * mpmath.mpf(phidot0) * tilt
+    c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
+    bound = sum(abs(c) * mpmath.exp(max(l.real, 0) * t_max) for c, l in ((c1, l1), (c2, l2)))
+    return (lambda t: abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t))), bound
 
 
 def linear_path(name, motion, rate, tilt, params=None, t_end="10", n: int = 401) -> list:
@@ -418,18 +427,20 @@ def linear_grows(name, motion, rate, tilt, params, t_end="10", growth=GROWTH) ->
     """Whether :func:`linear_deviation` exceeds ``growth`` x the tilt, with the same answer for every input.
 
     For the oscillating solution (w2 > 0) every value on the grid is at most |d*| + |tilt - d*|
-    (to 30 digits); when that bound, with :data:`_BOUND_MARGIN`, is below the limit no value can
-    exceed it, and the 401 cosines are not evaluated.  Otherwise the grid is searched, its end
-    first (where a growing solution is largest), and the search stops at the first value above the
-    limit: the maximum exceeds a number exactly when one value does.  The sleeping motion goes
-    through :func:`linear_deviation` as it is.
+    (to 30 digits; for the sleeping motion sum |c_k| exp(max(Re l_k, 0) t_end)); when that
+    bound, with :data:`_BOUND_MARGIN`, is below the limit no value can exceed it, and the 401
+    cosines (exponentials) are not evaluated.  Otherwise the grid is searched, its end first (where
+    a growing solution is largest), and the search stops at the first value above the limit: the
+    maximum exceeds a number exactly when one value does (rounding to double is monotonic).
     """
     limit = growth * float(tilt)
-    if motion == "sleeping":
-        return linear_deviation(name, motion, rate, tilt, params, t_end) > limit
     times = _grid(t_end)
     with mpmath.workdps(30):
-        value, bound = _linear_solution(name, motion, rate, tilt, params)
+        if motion == "sleeping":
+            f = _linear_coefficients(name, motion, tuple(sorted(dict(params or {}).items())))
+            value, bound = _sleeping_solution(f, mpmath.mpf(rate), mpmath.mpf(tilt), 0, times[-1])
+        else:
+            value, bound = _linear_solution(name, motion, rate, tilt, params)
         if bound is not None and float(bound) * (1 + _BOUND_MARGIN) < limit:
             return False
         return any(abs(float(value(t))) > limit for t in times[-1:] + times[:-1])
