@@ -123,46 +123,53 @@ def ring_parameter_comparison(motion: str, dps: int = 30) -> list:
 
 
 def threshold_rows(progress=None) -> list:
-    """Linear threshold, nonlinear brackets at three tilts, linear-protocol brackets, variational w2."""
+    """Linear threshold, nonlinear brackets at three tilts, linear-protocol brackets, variational w2:
+    one row per case of :data:`THRESHOLD_CASES` (:func:`threshold_case_rows`)."""
     rows = []
     for model, motion, params in THRESHOLD_CASES:
         if progress:
             progress(f"threshold {model} {motion} {params or ''}")
-        t = threshold(model, motion, params)
-        row = {"model": model, "motion": motion, "params": params, "rate": t.name,
-               "linear": None if t.value is None else mpmath.nstr(t.value, 15),
-               "closed_form": t.closed_form, "method": t.method, "brackets": {}, "linear_protocol": [],
-               "variational": []}
-        if _ring_set(model, params):
-            other = threshold(model, motion, _other_params()).value
-            row.update({"parameter_set": _ring_set(model, params),
-                        RING_OTHER_SET: {"params": _other_params(), "linear": mpmath.nstr(other, 15)},
-                        "parameter_sets": ring_parameter_comparison(motion)})
-        if t.value is not None:
-            for tilt in TILTS:
-                lo, hi = bracket(model, motion, tilt, params, iterations=16)
-                row["brackets"][tilt] = [_nstr(lo), _nstr(hi)]
-            for growth, t_end in PROTOCOLS:
-                lo, hi = bracket(model, motion, "1e-6", params, iterations=30, t_end=t_end, criterion="linear",
-                                 growth=growth)
-                row["linear_protocol"].append({"growth": growth, "t_end": t_end, "bracket": [_nstr(lo), _nstr(hi)]})
-        else:
-            row["scan"] = stability_scan(model, motion, params)
-        if motion != "sleeping":
-            with mpmath.workdps(40):
-                base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(PAPER_G) / mpmath.mpf("0.4")) * 2
-            for factor in ("0.9", "1.1"):
-                with mpmath.workdps(40):
-                    rate = base * mpmath.mpf(factor)
-                for precision in ("double", "quad"):
-                    v = variational_w2(model, motion, rate, params, precision)
-                    row["variational"].append({
-                        "rate": _nstr(v.rate, 12), "precision": precision, "w2_linear": _nstr(v.w2_linear, 15),
-                        "w2_variational": _nstr(v.w2_variational, 15),
-                        "relative_difference": mpmath.nstr(v.relative_difference, 2),
-                        "multipliers": [f"{round(m.real, 6) + 0.0:.6f}{round(m.imag, 6) + 0.0:+.6f}i" for m in v.multipliers]})
-        rows.append(row)
+        rows.extend(threshold_case_rows(model, motion, params))
     return rows
+
+
+def threshold_case_rows(model: str, motion: str, params: dict) -> list:
+    """The rows of :func:`threshold_rows` for one case of :data:`THRESHOLD_CASES` (one row; a list, so
+    that the report can run the cases as separate jobs and concatenate them in order)."""
+    t = threshold(model, motion, params)
+    row = {"model": model, "motion": motion, "params": params, "rate": t.name,
+           "linear": None if t.value is None else mpmath.nstr(t.value, 15),
+           "closed_form": t.closed_form, "method": t.method, "brackets": {}, "linear_protocol": [],
+           "variational": []}
+    if _ring_set(model, params):
+        other = threshold(model, motion, _other_params()).value
+        row.update({"parameter_set": _ring_set(model, params),
+                    RING_OTHER_SET: {"params": _other_params(), "linear": mpmath.nstr(other, 15)},
+                    "parameter_sets": ring_parameter_comparison(motion)})
+    if t.value is not None:
+        for tilt in TILTS:
+            lo, hi = bracket(model, motion, tilt, params, iterations=16)
+            row["brackets"][tilt] = [_nstr(lo), _nstr(hi)]
+        for growth, t_end in PROTOCOLS:
+            lo, hi = bracket(model, motion, "1e-6", params, iterations=30, t_end=t_end, criterion="linear",
+                             growth=growth)
+            row["linear_protocol"].append({"growth": growth, "t_end": t_end, "bracket": [_nstr(lo), _nstr(hi)]})
+    else:
+        row["scan"] = stability_scan(model, motion, params)
+    if motion != "sleeping":
+        with mpmath.workdps(40):
+            base = t.value if t.value is not None else mpmath.sqrt(mpmath.mpf(PAPER_G) / mpmath.mpf("0.4")) * 2
+        for factor in ("0.9", "1.1"):
+            with mpmath.workdps(40):
+                rate = base * mpmath.mpf(factor)
+            for precision in ("double", "quad"):
+                v = variational_w2(model, motion, rate, params, precision)
+                row["variational"].append({
+                    "rate": _nstr(v.rate, 12), "precision": precision, "w2_linear": _nstr(v.w2_linear, 15),
+                    "w2_variational": _nstr(v.w2_variational, 15),
+                    "relative_difference": mpmath.nstr(v.relative_difference, 2),
+                    "multipliers": [f"{round(m.real, 6) + 0.0:.6f}{round(m.imag, 6) + 0.0:+.6f}i" for m in v.multipliers]})
+    return [row]
 
 
 def stability_scan(model: str, motion: str, params: dict) -> list:

@@ -13,7 +13,7 @@ when w2 > 0, and the threshold is w2 = 0.  The shape is checked, not assumed.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Optional
 
@@ -98,7 +98,34 @@ def to_record(t: Threshold, nonlinear=None) -> dict:
 
 
 def threshold(name: str, motion: str, params: Optional[dict] = None, dps: int = 30) -> Threshold:
-    """The critical rate of ``motion`` for model ``name`` (parameters as decimal strings)."""
+    """The critical rate of ``motion`` for model ``name`` (parameters as decimal strings).
+
+    Computed once per (name, motion, params, dps) in a process: the sympy linearisation costs
+    0.1-2 s, and the brackets, the scan and the ring's comparison each ask for it again.
+    """
+    key = _params_key(params)
+    if key is None:
+        return _threshold(name, motion, params, dps)
+    t = _threshold_memo(name, motion, key, dps)
+    return replace(t, params=dict(t.params))  # the caller's own dict, as from a fresh computation
+
+
+def _params_key(params: Optional[dict]):
+    """``params`` as a hashable key that tells 1, 1.0 and "1" apart, or None if a value is not hashable."""
+    try:
+        key = tuple(sorted((k, type(v).__name__, v) for k, v in (params or {}).items()))
+        hash(key)
+    except TypeError:
+        return None
+    return key
+
+
+@lru_cache(maxsize=None)
+def _threshold_memo(name: str, motion: str, key: tuple, dps: int) -> Threshold:
+    return _threshold(name, motion, {k: v for k, _, v in key}, dps)
+
+
+def _threshold(name: str, motion: str, params: Optional[dict], dps: int) -> Threshold:
     if name not in MOTIONS:
         raise ValueError(f"model {name!r} has no threshold study; allowed: {', '.join(MOTIONS)}")
     if motion not in MOTIONS[name]:
@@ -202,6 +229,7 @@ def _hurricane_precession(model, subs, shown, dps) -> Threshold:
 OMEGA3 = sp.Symbol("omega3", real=True)
 
 
+@lru_cache(maxsize=None)  # ~2 s of sympy series; a Model is hashable and never changes
 def sleeping_coefficients(model) -> tuple:
     """(A, B) of the tilt equation u'' = A u + i B u' near theta = 0, u = theta exp(i phi).
 
@@ -257,6 +285,21 @@ def _sleeping(name, model, subs, shown, dps) -> Threshold:
 GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
 
 
+@lru_cache(maxsize=None)
+def _exact_memo(name: str, key: tuple) -> dict:
+    model = get_model(name)
+    subs = exact_parameters(model, {k: v for k, _, v in key})
+    return {p.name: subs[p.symbol] for p in model.parameters}
+
+
+def _steady(name, motion, rate, params) -> dict:
+    """:func:`models.steady.steady_state` with the parameters read (``sp.nsimplify``, ~40 ms for the
+    ring's three) once per set: handed on as the exact numbers it reads them as, every parameter
+    given, so its result is the same dict."""
+    key = _params_key(params)
+    return steady_state(name, motion, rate, params if key is None else _exact_memo(name, key))
+
+
 def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
     """(outcome, theta - theta_steady on the grid) of the full equations under the protocol of :func:`grows`.
 
@@ -266,7 +309,7 @@ def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
     """
     from verify.engine.single import solve
 
-    state = steady_state(name, motion, rate, params)
+    state = _steady(name, motion, rate, params)
     with mpmath.workdps(40):
         th0 = mpmath.mpf(state["theta"])
         state["theta"] = mpmath.nstr(th0 + mpmath.mpf(tilt), 36)
@@ -326,13 +369,22 @@ def linear_deviation(name, motion, rate, tilt, params=None, t_end="10", n: int =
     with mpmath.workdps(30):
         tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
         if motion == "sleeping":
-            A, B = f(rate)
-            root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
-            l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
-            v0 = 1j * mpmath.mpf(phidot0) * tilt
-            c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
-            return float(max(abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t)) for t in times))
+            value, _ = _sleeping_solution(f, rate, tilt, phidot0, times[-1])
+            return float(max(value(t) for t in times))
     return float(max(abs(v) for v in linear_path(name, motion, rate, tilt, params, t_end, n)))
+
+
+def _sleeping_solution(f, rate, tilt, phidot0, t_max):
+    """(t -> |u(t)|, a bound on |u| for 0 <= t <= t_max) of the sleeping motion's u'' = A u + i B u'
+    (:func:`linear_deviation`), as 30-digit mpmath numbers; call it, and the function it returns,
+    under ``workdps(30)``.  u = c1 exp(l1 t) + c2 exp(l2 t), so |u| <= sum |c_k| exp(max(Re l_k, 0) t_max)."""
+    A, B = f(rate)
+    root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
+    l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
+    v0 = 1j * mpmath.mpf(phidot0) * tilt
+    c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
+    bound = sum(abs(c) * mpmath.exp(max(l.real, 0) * t_max) for c, l in ((c1, l1), (c2, l2)))
+    return (lambda t: abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t))), bound
 
 
 def linear_path(name, motion, rate, tilt, params=None, t_end="10", n: int = 401) -> list:
@@ -340,20 +392,58 @@ def linear_path(name, motion, rate, tilt, params=None, t_end="10", n: int = 401)
 
     d theta(t) = d* + (tilt - d*) cos(sqrt(w2) t) of :func:`linear_deviation` (cosh for w2 < 0).
     """
+    with mpmath.workdps(30):
+        value, _ = _linear_solution(name, motion, rate, tilt, params)
+        return [float(value(t)) for t in _grid(t_end, n)]
+
+
+def _linear_solution(name, motion, rate, tilt, params):
+    """(t -> d theta(t), a bound on |d theta| over every t >= 0 or None) of :func:`linear_path`,
+    as 30-digit mpmath numbers; call it, and the function it returns, under ``workdps(30)``.
+
+    The bound |d*| + |tilt - d*| holds for the oscillating solution (w2 > 0); the growing one has none.
+    """
     params = dict(params or {})
     f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
-    with mpmath.workdps(30):
-        tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
-        s = steady_state(name, motion, rate, params)
-        a, c, d, e, ff = f(*(mpmath.mpf(s[k]) for k in ("theta", "phidot", "psidot")))
-        w2 = -(a + c * e + d * ff)
-        shift = -(c * e + d * ff) * tilt / w2
-        osc = (lambda t: mpmath.cos(mpmath.sqrt(w2) * t)) if w2 > 0 else (lambda t: mpmath.cosh(mpmath.sqrt(-w2) * t))
-        return [float(shift + (tilt - shift) * osc(t)) for t in _grid(t_end, n)]
+    tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
+    s = _steady(name, motion, rate, params)
+    a, c, d, e, ff = f(*(mpmath.mpf(s[k]) for k in ("theta", "phidot", "psidot")))
+    w2 = -(a + c * e + d * ff)
+    shift = -(c * e + d * ff) * tilt / w2
+    amplitude = tilt - shift
+    if w2 > 0:
+        root = mpmath.sqrt(w2)
+        return (lambda t: shift + amplitude * mpmath.cos(root * t)), abs(shift) + abs(amplitude)
+    root = mpmath.sqrt(-w2)
+    return (lambda t: shift + amplitude * mpmath.cosh(root * t)), None
+
+
+#: Relative margin on a 30-digit bound before it decides :func:`linear_grows` without the grid:
+#: far above the bound's own rounding (~1e-29) and the double rounding of the comparison (~1e-16).
+_BOUND_MARGIN = 1e-9
 
 
 def linear_grows(name, motion, rate, tilt, params, t_end="10", growth=GROWTH) -> bool:
-    return linear_deviation(name, motion, rate, tilt, params, t_end) > growth * float(tilt)
+    """Whether :func:`linear_deviation` exceeds ``growth`` x the tilt, with the same answer for every input.
+
+    For the oscillating solution (w2 > 0) every value on the grid is at most |d*| + |tilt - d*|
+    (to 30 digits; for the sleeping motion sum |c_k| exp(max(Re l_k, 0) t_end)); when that
+    bound, with :data:`_BOUND_MARGIN`, is below the limit no value can exceed it, and the 401
+    cosines (exponentials) are not evaluated.  Otherwise the grid is searched, its end first (where
+    a growing solution is largest), and the search stops at the first value above the limit: the
+    maximum exceeds a number exactly when one value does (rounding to double is monotonic).
+    """
+    limit = growth * float(tilt)
+    times = _grid(t_end)
+    with mpmath.workdps(30):
+        if motion == "sleeping":
+            f = _linear_coefficients(name, motion, tuple(sorted(dict(params or {}).items())))
+            value, bound = _sleeping_solution(f, mpmath.mpf(rate), mpmath.mpf(tilt), 0, times[-1])
+        else:
+            value, bound = _linear_solution(name, motion, rate, tilt, params)
+        if bound is not None and float(bound) * (1 + _BOUND_MARGIN) < limit:
+            return False
+        return any(abs(float(value(t))) > limit for t in times[-1:] + times[:-1])
 
 
 CRITERIA = ("nonlinear", "linear")
@@ -432,7 +522,7 @@ def variational_w2(name: str, motion: str, rate, params=None, precision: str = "
     params = dict(params or {})
     prec = parse_precision(precision)
     model = get_model(name)
-    steady = steady_state(name, motion, rate, params)
+    steady = _steady(name, motion, rate, params)
     f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
     with mpmath.workdps(45):  # w2 to beyond quad: the steady state carries 36 digits
         a, c, d, e, ff = f(*(mpmath.mpf(steady[k]) for k in ("theta", "phidot", "psidot")))
