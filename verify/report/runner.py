@@ -57,11 +57,13 @@ def _work(job: Job):
         return None, [], {}, time.monotonic() - t0, text
 
 
-def run_jobs(jobs, cache: JobCache = None, fresh: bool = False, workers: Optional[int] = None, say=print) -> dict:
+def run_jobs(jobs, cache: JobCache = None, fresh: bool = False, workers: Optional[int] = None, say=print,
+             hints: Optional[dict] = None) -> dict:
     """Every job's :class:`Outcome`, by job name (in the order of ``jobs``).
 
     ``fresh`` ignores the cache (and refills it); ``workers`` defaults to the cores this
-    process may use; ``workers=1`` runs in this process (no pool).
+    process may use; ``workers=1`` runs in this process (no pool).  ``hints``: job name ->
+    seconds, for ordering jobs the cache has never timed (e.g. the committed timing.json's).
     """
     cache = cache or JobCache()
     t0 = time.monotonic()
@@ -90,7 +92,8 @@ def run_jobs(jobs, cache: JobCache = None, fresh: bool = False, workers: Optiona
         say(f"[{done:3d}/{n}] {job.name:<{width}} {seconds:6.1f} s" + (f"  FAILED: {error}" if error else ""))
 
     # longest first (unknown jobs count as long): the last jobs to start are the short ones
-    todo.sort(key=lambda jk: -(cache.last_seconds(jk[0].name) or float("inf")))
+    hints = hints or {}
+    todo.sort(key=lambda jk: -(cache.last_seconds(jk[0].name) or hints.get(jk[0].name) or float("inf")))
     workers = workers or len(os.sched_getaffinity(0))
     if workers == 1 or len(todo) <= 1:
         for job, key in todo:

@@ -35,7 +35,7 @@ def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
     t0 = time.monotonic()
     heyoka_cache = Path(os.environ.get("HEYOKA_CACHE_DIR", Path.home() / ".cache" / "heyoka"))
     timing = {"heyoka_cache_at_start": "warm" if heyoka_cache.exists() and any(heyoka_cache.iterdir()) else "cold"}
-    outcomes = run_jobs(registry(), JobCache(), fresh=fresh, workers=workers, say=say)
+    outcomes = run_jobs(registry(), JobCache(), fresh=fresh, workers=workers, say=say, hints=_last_job_seconds(out))
     results = assemble(outcomes)
     images = {img.filename: img.data for o in outcomes.values() for img in o.images}
     for name, data in images.items():
@@ -46,12 +46,23 @@ def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
         if stale.suffix in IMAGE_SUFFIXES and stale.name not in images and not results["failures"]:
             stale.unlink()  # a figure no job draws any more (kept while a job failed: it may be that job's)
     write_atomic(out / "results.json", json.dumps(results, indent=2) + "\n")
-    timing["jobs"] = {name: {"status": o.status, "seconds": o.seconds, **({"detail": o.timing} if o.timing else {})}
+    timing["jobs"] = {name: {"status": o.status, "seconds": round(o.seconds, 2), **({"detail": o.timing} if o.timing else {})}
                       for name, o in outcomes.items()}
     timing["total_seconds"] = round(time.monotonic() - t0, 1)
     timing["machine"] = {"platform": platform.platform(), "processor": platform.machine(), "cpus": os.cpu_count()}
     write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
     return results
+
+
+def _last_job_seconds(out: Path) -> dict:
+    """Job name -> wall seconds of the last report written to ``out`` (timing.json), for ordering a
+    queue the cache cannot order (a fresh clone); {} when there is none."""
+    try:
+        jobs = json.loads((out / "timing.json").read_text()).get("jobs", {})
+    except (OSError, ValueError):
+        return {}
+    return {name: j["seconds"] for name, j in jobs.items()
+            if isinstance(j, dict) and j.get("seconds") and j.get("status") != "failed"}
 
 
 def render(out="reports", say=None) -> None:
