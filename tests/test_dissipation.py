@@ -203,9 +203,10 @@ def test_records_and_figure(fast_studies):
     text = json.dumps(rec)
     assert json.loads(text)[0]["fit"]["p_predicted"] == "1/3"
     assert isinstance(rec[1]["fit"]["p"], str) and rec[1]["fit"]["p_ok"] is True
-    png = render_dissipation(studies)
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
-    assert png == render_dissipation(studies)  # no timestamps
+    image = render_dissipation(studies)
+    assert image.data[:8] == b"\x89PNG\r\n\x1a\n" and image.filename == "dissipation.png"
+    assert image == render_dissipation(studies)  # no timestamps
+    assert all(s.law in image.alt for s in studies)
 
 
 @pytest.mark.slow

@@ -149,20 +149,21 @@ def write_report(out="reports") -> None:
     md = render_markdown(results, cons_md + "\n" + render_studies(studies) + "\n".join(extra) + "\n", prov,
                          summary=summary)
     md += "\n## Provenance\n\n```\n" + json.dumps(prov, indent=2) + "\n```\n"
-    from .figures import render
+    from .figures import render, with_alt_text
 
     images = {}
     for _, ev in results:
         for fig in ev.figures:
             images[f"{fig.name}.png"] = render(fig)
-    images.update(study_images)
-    for name, data in images.items():
-        write_atomic(out / "figures" / name, data)
+    images.update(study_images)  # file name -> figures.Image
+    md = with_alt_text(md, images)
+    for name, image in images.items():
+        write_atomic(out / "figures" / name, image.data)
     results_json = {"summary": summary, "claims": [result_record(c, e) for c, e in results], "conservation": rows,
                     "studies": studies, "provenance": prov}
     write_atomic(out / "results.json", json.dumps(results_json, indent=2) + "\n")
     write_atomic(out / "REPORT.md", md)
-    write_atomic(out / "report.html", render_html(md, images))
+    write_atomic(out / "report.html", render_html(md, {name: image.data for name, image in images.items()}))
     write_atomic(out / "conservation.md", conservation_markdown(rows, prov))
     write_atomic(out / "conservation.json", json.dumps({"rows": rows, "provenance": prov}, indent=2) + "\n")
     timing["total_seconds"] = round(time.monotonic() - t0, 1)
