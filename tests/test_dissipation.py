@@ -16,6 +16,7 @@ from __future__ import annotations
 import json
 import math
 
+import matplotlib
 import mpmath
 import numpy as np
 import pytest
@@ -26,7 +27,8 @@ from models.dissipative import LAW_NAMES, c, couple, dissipative_disk, law, moff
 from models.rolling import derive
 from models.symbols import ACCELERATIONS, g, omega_body, theta, thetadot, time_derivative
 from verify import solve
-from verify.report.study_figures import render_dissipation
+from verify.report import style
+from verify.report.study_figures import draw_dissipation, render_dissipation
 from verify.studies import dissipation as D
 from verify.studies.spindown import spindown
 
@@ -203,9 +205,14 @@ def test_records_and_figure(fast_studies):
     text = json.dumps(rec)
     assert json.loads(text)[0]["fit"]["p_predicted"] == "1/3"
     assert isinstance(rec[1]["fit"]["p"], str) and rec[1]["fit"]["p_ok"] is True
-    png = render_dissipation(studies)
-    assert png[:8] == b"\x89PNG\r\n\x1a\n"
-    assert png == render_dissipation(studies)  # no timestamps
+    image = render_dissipation(studies)
+    assert image.data[:8] == b"\x89PNG\r\n\x1a\n" and image.filename == "dissipation.png"
+    assert image == render_dissipation(studies)  # no timestamps
+    assert all(s.law in image.alt for s in studies)
+    with matplotlib.rc_context(style.RC):  # the checks of tests/test_figures_style.py on this figure
+        fig = draw_dissipation(studies)
+        assert style.labels_without_units(fig) == [] and style.small_texts(fig) == []
+        matplotlib.pyplot.close(fig)
 
 
 @pytest.mark.slow

@@ -210,8 +210,10 @@ def test_left_runs_report_cap_reason_and_time(disk_map):
 
 
 def test_render_map_png(disk_map):
-    png = render_map(disk_map)
-    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 5000
+    image = render_map(disk_map)
+    assert image.filename == "map-disk-diameter-spin.png" and "linear threshold" in image.alt
+    assert image.data[:8] == b"\x89PNG\r\n\x1a\n" and len(image.data) > 5000
+    assert image == render_map(disk_map)  # same bytes, same alt text
 
 
 @pytest.mark.parametrize("kwargs,message", [

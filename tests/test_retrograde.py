@@ -199,7 +199,7 @@ def test_study_summary_counts_and_renders(tmp_path):
         assert s["min_points_per_nutation"] >= 20
         figures = retrograde_section.figures(m, *results["sweep"][:2])
         assert sorted(figures) == [f"retrograde-{m}-roll.png", f"retrograde-{m}.png"]
-        assert all(png[:8] == b"\x89PNG\r\n\x1a\n" for png in figures.values())
+        assert all(im.data[:8] == b"\x89PNG\r\n\x1a\n" and im.alt for im in figures.values())
     text = "\n".join(retrograde_section.render_markdown(study))
     assert "## The ring's retrograde turn: air drag or rolling friction" in text and "issue" not in text.lower()
     assert "slow path" in text and "node-turn reading" in text.lower()

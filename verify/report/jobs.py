@@ -115,7 +115,7 @@ def claims_job(module: str) -> JobOutput:
     for claim in claims:
         t0 = time.monotonic()
         ev = claim.evaluate()
-        figs = [_image(render(fig), f"{fig.name}.png", fig.title) for fig in ev.figures]
+        figs = [render(fig) for fig in ev.figures]
         records.append(claim_record(claim, ev, figs))
         images += figs
         timing[claim.id] = round(time.monotonic() - t0, 2)
@@ -157,7 +157,7 @@ def map_job(model: str, motion: str) -> JobOutput:
     from .study_figures import render_map
 
     row, smap, timing = map_row(model, motion)
-    return JobOutput(row, [_image(render_map(smap), row["figure"].removeprefix("figures/"), "stability map")], timing)
+    return JobOutput(row, [render_map(smap)], timing)
 
 
 def dissipation_job() -> JobOutput:
@@ -165,7 +165,7 @@ def dissipation_job() -> JobOutput:
     from .study_figures import render_dissipation
 
     laws = dissipation_study()
-    return JobOutput([to_record(s) for s in laws], [_image(render_dissipation(laws), "dissipation.png", "dissipation")],
+    return JobOutput([to_record(s) for s in laws], [render_dissipation(laws)],
                      {"laws": {s.law: round(s.run.wall_seconds, 2) for s in laws}})
 
 
@@ -176,8 +176,7 @@ def retrograde_job(mechanism: str) -> JobOutput:
     study = run_study(mechanisms=(mechanism,))
     summary = study.summaries[mechanism]
     seconds = summary.pop("seconds")  # wall time: timing.json only
-    images = [_image(data, name, name) for name, data in figures(mechanism, *study.sweeps[mechanism]).items()]
-    return JobOutput(summary, images, {"sweep_seconds": seconds})
+    return JobOutput(summary, list(figures(mechanism, *study.sweeps[mechanism]).values()), {"sweep_seconds": seconds})
 
 
 def reference_job(precision: str, names: list) -> JobOutput:
@@ -185,9 +184,3 @@ def reference_job(precision: str, names: list) -> JobOutput:
 
     return JobOutput([c.to_record() for c in check_set(precision, names)])
 
-
-def _image(data, filename, alt):
-    """TEMPORARY until the renderers return :class:`~.figures.Image` themselves."""
-    from .figures import Image
-
-    return data if isinstance(data, Image) else Image(filename, data, alt)

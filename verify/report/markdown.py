@@ -120,11 +120,12 @@ def sections(results: dict, benchmarks: Optional[dict]) -> list:
         return [("conservation", "Conservation", cons.split("\n", 1)[1].lstrip("\n"), None)]
 
     studies = results["studies"]
+    alts = {f["file"]: f["alt"] for f in results.get("figures", ())}
     out += guarded("Conservation", conservation)
-    out += guarded("Stability thresholds", lambda: _split_h2(render_studies(studies)))
+    out += guarded("Stability thresholds", lambda: _split_h2(render_studies(studies), alts))
     out += guarded("Reference trajectories", lambda: _split_h2("\n".join(
         render_reference(studies["reference"]["index"], studies["reference"]["checks"]))))
-    out += guarded("Retrograde turn", lambda: _split_h2("\n".join(render_retrograde(studies["retrograde"]))))
+    out += guarded("Retrograde turn", lambda: _split_h2("\n".join(render_retrograde(studies["retrograde"])), alts))
     out += _split_h2("\n".join(benchmarks_section(benchmarks)))
     out.append(("provenance", "Provenance", "```\n" + json.dumps(results["provenance"], indent=2) + "\n```", None))
     return out
@@ -138,8 +139,12 @@ def render_markdown(results: dict, benchmarks: Optional[dict] = None) -> str:
     return "\n".join(lines)
 
 
-def _split_h2(markdown: str) -> list:
-    """``## `` sections of a rendered block as (anchor, title, body, None)."""
+def _split_h2(markdown: str, alts: Optional[dict] = None) -> list:
+    """``## `` sections of a rendered block as (anchor, title, body, None), each figure line given
+    its alt text from ``alts`` (results.json's ``figures``)."""
+    from .figures import with_alt_text
+
+    markdown = with_alt_text(markdown, alts or {})
     out = []
     for chunk in re.split(r"^## ", markdown, flags=re.M)[1:]:
         title, _, body = chunk.partition("\n")

@@ -1,21 +1,100 @@
 """REPORT.md's section on the ring's retrograde turn and its figures, rendered from what
 :func:`verify.studies.retrograde.run_study` found: the summaries (results.json's ``studies.retrograde``)
-and each mechanism's sweep (figures retrograde-<mechanism>.png and retrograde-<mechanism>-roll.png)."""
+and each mechanism's sweep (figures retrograde-<mechanism>.png and retrograde-<mechanism>-roll.png:
+one cell per run, yes/no, with the runs that are not read labelled as such)."""
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
-from ..sweep.plot import render
+import matplotlib
+import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
+from matplotlib.patches import Patch
+
+from . import style
+from .figures import Image
+from .style import png_bytes
+
+#: the cells of a yes/no map: (code, colour, legend text); NaN cells are told apart by whether
+#: the run had windows to read (verify/sweep/engine.py, senses: every value is NaN without them)
+CATEGORIES = ((1, style.YES, "yes"), (0, style.NO, "no"),
+              (2, style.UNDECIDED, "undecided: its end state (or its start) is not read"),
+              (3, style.TOO_SHORT, "too short: fewer than 2 windows of 12 nutations"))
+QUANTITIES = {"retrograde_turn": "slow-path retrograde turn before theta < 0.1",
+              "roll_reversal": "rolling direction reversed"}
 
 
 def figures(mechanism: str, spec, rows: list) -> dict:
-    """The two maps of one mechanism's sweep, file name -> PNG: the retrograde turn (the spec's own
-    [plot]) and the rolling direction reversed."""
-    roll = replace(spec, plot={**spec.plot, "quantity": "roll_reversal"})
-    return {f"retrograde-{mechanism}.png": render(spec, rows),
-            f"retrograde-{mechanism}-roll.png": render(roll, rows,
-                                                       title=f"ring+{mechanism}: rolling direction reversed (1 = yes)")}
+    """The two maps of one mechanism's sweep, file name -> :class:`.figures.Image`: the retrograde
+    turn (the spec's own [plot] axes) and the rolling direction reversed."""
+    out = {}
+    for quantity, name in (("retrograde_turn", f"retrograde-{mechanism}.png"),
+                           ("roll_reversal", f"retrograde-{mechanism}-roll.png")):
+        with matplotlib.rc_context(style.RC):
+            data = png_bytes(draw_yes_no(spec, rows, quantity))
+        out[name] = Image(name, data, yes_no_alt_text(spec, rows, quantity))
+    return out
+
+
+def categorise(spec, rows: list, quantity: str):
+    """(x values, y values, panel values, codes (panel, y, x)) of ``quantity`` read as yes/no.
+
+    Codes as :data:`CATEGORIES`: 1 yes (> 0.5), 0 no, 2 NaN on a run that had windows to read,
+    3 NaN on a run too short to have any; -1 where no run is stored (none in a complete sweep).
+    """
+    x, y, panels = spec.plot["x"], spec.plot["y"], spec.plot["panels"]
+    xs, ys, ps = (np.array(next(a.values for a in spec.axes if a.name == n)) for n in (x, y, panels))
+    codes = np.full((len(ps), len(ys), len(xs)), -1, dtype=int)
+    for r in rows:
+        v = r[quantity]
+        code = (3 if _nan(r["windows"]) else 2) if _nan(v) else int(v > 0.5)
+        codes[_index(ps, r[f"in_{panels}"]), _index(ys, r[f"in_{y}"]), _index(xs, r[f"in_{x}"])] = code
+    return xs, ys, ps, codes
+
+
+def draw_yes_no(spec, rows: list, quantity: str):
+    """One panel per value of the spec's ``panels`` axis (c): each run's yes/no as a cell over the
+    spec's x (w) and y (h) axes, four labelled categories in a legend, the counts in it."""
+    xs, ys, ps, codes = categorise(spec, rows, quantity)
+    if (codes < 0).any():
+        raise ValueError(f"{spec.name}: {int((codes < 0).sum())} points of the grid have no run stored")
+    mechanism = spec.model.removeprefix("ring+")
+    fig, axes = style.figure(height=4.6, ncols=len(ps), squeeze=False)
+    cmap = ListedColormap([colour for _, colour, _ in sorted(CATEGORIES)])
+    norm = BoundaryNorm(np.arange(-0.5, len(CATEGORIES)), cmap.N)
+    for ax, c, panel in zip(axes[0], ps, codes):
+        ax.grid(False)
+        ax.pcolormesh(xs, ys, panel, shading="nearest", cmap=cmap, norm=norm, edgecolors="white", linewidth=0.5)
+        ax.set_title(f"{spec.plot['panels']} = {c:.4g}")
+        ax.set_xlabel(f"{spec.plot['x']} / R")
+        ax.set_ylabel(f"{spec.plot['y']} / R")
+        ax.set_xticks(xs, [f"{v:.3g}" for v in xs])
+        ax.set_yticks(ys, [f"{v:.3g}" for v in ys])
+    handles = [Patch(facecolor=colour, edgecolor="0.5", label=f"{text} ({int((codes == code).sum())})")
+               for code, colour, text in CATEGORIES]
+    fig.legend(handles=handles, loc="outside lower center", ncols=2, title="runs (count over both panels)")
+    fig.suptitle(f"ring+{mechanism}: {QUANTITIES[quantity]} (wall w and half-thickness h in units of the radius R)")
+    return fig
+
+
+def yes_no_alt_text(spec, rows: list, quantity: str) -> str:
+    """What :func:`draw_yes_no` shows: the axes and ranges, the counts of each category per panel."""
+    xs, ys, ps, codes = categorise(spec, rows, quantity)
+    x, y, panels = spec.plot["x"], spec.plot["y"], spec.plot["panels"]
+    counts = "; ".join(f"{panels} = {c:.4g}: " + ", ".join(f"{int((panel == code).sum())} {text.split(':')[0]}"
+                                                            for code, _, text in CATEGORIES)
+                       for c, panel in zip(ps, codes))
+    return (f"{spec.model}: {QUANTITIES[quantity]} (yes, no, undecided or too short) for each run over "
+            f"{x} from {xs.min():g} to {xs.max():g} R and {y} from {ys.min():g} to {ys.max():g} R, one panel per "
+            f"{panels}. {counts}.")
+
+
+def _index(values, v) -> int:
+    return int(np.argmin(np.abs(values - v)))
+
+
+def _nan(v) -> bool:
+    return v is None or (isinstance(v, float) and math.isnan(v))
 
 
 def render_markdown(study: dict) -> list:
