@@ -19,7 +19,7 @@ import sympy as sp
 from latex2mathml.converter import convert
 
 from verify.claims import ERRATUM, all_claims
-from verify.claims.mathtext import equation, latex, symbol_latex, tex
+from verify.mathtext import equation, latex, symbol_latex, tex
 
 #: What ``str`` / ``repr`` of a sympy object leaves in a text, each with the object that shows it.
 x, y = sp.symbols("x psidot_0")

@@ -8,6 +8,7 @@ results.json's.  The renderer itself is checked on a page made here, with negati
 from __future__ import annotations
 
 import base64
+import io
 import json
 import re
 from html.parser import HTMLParser
@@ -68,11 +69,19 @@ def leftovers(page: Page, patterns) -> list:
 
 
 def image_kind(src: str):
-    m = re.fullmatch(r"data:image/(png|svg\+xml);base64,(.+)", src, re.S)
+    """"png", "webp" or "svg" when ``src`` is a data URI that decodes to that kind of image, else None."""
+    m = re.fullmatch(r"data:image/(png|webp|svg\+xml);base64,(.+)", src, re.S)
     if not m:
         return None
     data = base64.b64decode(m.group(2), validate=True)
-    return "png" if data.startswith(b"\x89PNG\r\n\x1a\n") else ("svg" if b"<svg" in data[:2000] else None)
+    if data.startswith(b"\x89PNG\r\n\x1a\n"):
+        return "png"
+    if data[:4] == b"RIFF" and data[8:12] == b"WEBP":
+        from PIL import Image as PILImage
+
+        PILImage.open(io.BytesIO(data)).load()  # raises if it does not decode
+        return "webp"
+    return "svg" if b"<svg" in data[:2000] else None
 
 
 @pytest.fixture(scope="module")
@@ -118,32 +127,55 @@ def test_the_page_is_self_contained_and_small(committed):
     assert not re.search(r"<(script|link|img)[^>]+(src|href)=\"https?:", html)
 
 
+def _number_leaves(node):
+    if isinstance(node, dict):
+        for v in node.values():
+            yield from _number_leaves(v)
+    elif isinstance(node, (list, tuple)):
+        for v in node:
+            yield from _number_leaves(v)
+    elif isinstance(node, str):
+        yield from re.findall(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?", node)
+
+
+def unknown_summary_numbers(page: Page, results: dict) -> list:
+    """The computed numbers (an exponent or at least two decimals: not '1.1 x Eq. 41') of the
+    summary's sentences that are none of results.json's summary numbers to the digits shown."""
+    prose = " ".join(page.sections["summary"]).split("| verdict")[0].split("verdict | claims")[0]
+    known = {float(n) for n in _number_leaves(results["summary"])}
+    computed = re.findall(r"(?<![\w.])-?\d+\.\d{2,}(?:e[-+]?\d+)?|(?<![\w.])-?\d+(?:\.\d+)?e[-+]?\d+", prose)
+    assert len(computed) >= 6, computed
+    def digits(n: str, k: float) -> float:  # k written with n's digits
+        mantissa, _, exponent = n.lower().partition("e")
+        places = len(mantissa.partition(".")[2])
+        return float(f"{k:.{places}e}") if exponent else round(k, places)
+
+    return [n for n in computed if not any(digits(n, k) == float(n) for k in known)]
+
+
 def test_the_summary_shows_results_json_numbers(committed):
-    """Every number of results.json's summary data appears, as written there, in the summary
-    section; the verdict counts are the claims' counts."""
+    """Every computed number the summary's sentences show is one of results.json's, both open
+    questions' numbers are shown, and the verdict counts are the claims' counts."""
     _, page, results = committed
+    assert not unknown_summary_numbers(page, results)
     shown = " ".join(page.sections["summary"])
-
-    def leaves(node):
-        if isinstance(node, dict):
-            for v in node.values():
-                yield from leaves(v)
-        elif isinstance(node, (list, tuple)):
-            for v in node:
-                yield from leaves(v)
-        elif isinstance(node, str) and re.fullmatch(r"-?[0-9.]+(e-?\d+)?", node):
-            yield node
-
     summary = results["summary"]
-    numbers = list(leaves({"olsson": summary["olsson"], "divergence": summary["divergence"]}))
-    assert len(numbers) >= 6
-    missing = [n for n in numbers if n not in shown and f"{float(n):.4f}" not in shown]
-    assert not missing
+    o = summary["olsson"]
+    assert o["rolling_rate"] in shown and f"{float(o['smooth_rate']):.4f}" in shown
+    assert summary["divergence"]["eq45_cm_at_rest_max_rel_error"] in shown
     from collections import Counter
 
     counts = Counter(c["verdict"] for c in results["claims"])
     for verdict, n in counts.items():
         assert re.search(rf"{re.escape(verdict)}\s+{n}\b", shown), verdict
+
+
+def test_a_wrong_summary_number_is_caught(committed):
+    """Negative control: a summary showing a rate results.json does not have."""
+    html, _, results = committed
+    rate = results["summary"]["olsson"]["rolling_rate"]
+    assert f"rate {rate} s" in html
+    assert unknown_summary_numbers(Page(html.replace(f"rate {rate} s", "rate 28.125 s", 1)), results) == ["28.125"]
 
 
 # --- the renderer, on pages made here -------------------------------------------------------------
@@ -162,7 +194,30 @@ def _tiny_results():
                            "precisions": ["double"]}}
 
 
-PNG = b"\x89PNG\r\n\x1a\n" + b"\0" * 16
+def _png(colour=(200, 30, 30)):
+    from PIL import Image as PILImage
+
+    buf = io.BytesIO()
+    img = PILImage.new("RGB", (12, 8), colour)
+    img.putpixel((3, 4), (0, 0, 0))
+    img.save(buf, "PNG")
+    return buf.getvalue()
+
+
+PNG = _png()
+
+
+def test_the_embedded_webp_has_the_png_pixels():
+    from PIL import Image as PILImage
+
+    from verify.report.page import lossless_webp
+
+    def pixels(data):
+        with PILImage.open(io.BytesIO(data)) as im:
+            return im.convert("RGBA").tobytes()
+
+    assert pixels(lossless_webp(PNG)) == pixels(PNG)
+    assert pixels(lossless_webp(_png((30, 30, 200)))) != pixels(PNG)  # the comparison can fail
 
 
 def test_text_is_shown_literally_and_math_is_typeset(monkeypatch):
@@ -175,7 +230,7 @@ def test_text_is_shown_literally_and_math_is_typeset(monkeypatch):
     shown = " ".join(page.text)
     assert "a*b_ and <c> [d](e)" in shown
     assert "<math" in html and "\\dot" not in shown
-    assert page.images[0]["alt"] == "what it shows" and image_kind(page.images[0]["src"]) == "png"
+    assert page.images[0]["alt"] == "what it shows" and image_kind(page.images[0]["src"]) == "webp"
     # negative controls: the checks catch a sympy repr and a literal Markdown link
     assert leftovers(page, SYMPY_REPRS)  # "psidot_0**2", as the claim text says it
     assert leftovers(Page("<p>see ![x](y.png) and **bold</p>"), MARKDOWN_LEFTOVERS)

@@ -47,6 +47,7 @@ def versions() -> dict:
     import matplotlib
     import mpmath
     import numpy
+    import PIL
     import sympy
 
     return {
@@ -56,6 +57,7 @@ def versions() -> dict:
         "mpmath": mpmath.__version__,
         "sympy": sympy.__version__,
         "matplotlib": matplotlib.__version__,
+        "pillow": PIL.__version__,  # encodes the figures (PNG) and the page's embedded copies (WebP)
     }
 
 

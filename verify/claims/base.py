@@ -195,7 +195,7 @@ def definition(id, source, section, statement, reason, quote="", reading=None) -
 def rows_identity(id, source, section, statement, printed, derived, body: str, quote="", reading=None) -> Claim:
     """A printed vector equation (LHS - RHS, 1-2-3 components) against the derived rows of ``body``."""
     def check():
-        from .mathtext import tex
+        from ..mathtext import tex
         from .vectors import same
         import sympy as sp
 

@@ -19,7 +19,7 @@ from models.symbols import (
     g, phidot, phiddot, psidot, psiddot, theta, thetadot, thetaddot, time_derivative,
 )
 
-from .mathtext import equation, latex, tex
+from ..mathtext import equation, latex, tex
 from .base import ROUNDING, TYPO, Claim, decide, definition, rows_identity
 from .vectors import (
     E1, E2, E3, c, euler_angles_omega, omega_body, omega_body_dot, omega_frame, s, same,

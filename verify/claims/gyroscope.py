@@ -13,7 +13,7 @@ from models import effective, hurricane, paper
 from models.common import PAPER_G
 from models.symbols import g, phidot, psidot, theta, thetadot, thetaddot, time_derivative
 
-from .mathtext import equation, latex, tex
+from ..mathtext import equation, latex, tex
 from .base import TYPO, Claim, decide, definition
 from .vectors import E3, c, omega_body, s, same, vertical_in_frame
 

@@ -13,7 +13,7 @@ from models import hurricane, paper
 from models.rolling import derive
 from models.symbols import g, phidot, phiddot, psidot, psiddot, thetadot, thetaddot, time_derivative
 
-from .mathtext import equation, latex, tex
+from ..mathtext import equation, latex, tex
 from .base import TYPO, Claim, decide, definition, rows_identity
 from .vectors import E1, E2, E3, c, omega_body, omega_body_dot, omega_frame, s, same, vertical_in_frame
 

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import base64
 import html
+import io
 import mimetypes
+import re
 from functools import lru_cache
 from typing import Optional
 
@@ -27,9 +29,25 @@ from .summary import SEVERITY_WORDS
 def _math(content: str, options: dict) -> str:
     """MathML for one formula; the TeX shown as code where latex2mathml cannot read it."""
     try:
-        return latex_to_mathml(content, display="block" if options.get("display_mode") else "inline")
+        return compact_mathml(latex_to_mathml(content, display="block" if options.get("display_mode") else "inline"))
     except Exception:  # noqa: BLE001 -- a formula it cannot read is shown, not lost
         return f'<code class="tex">{html.escape(content)}</code>'
+
+
+_CHAR_REF = re.compile(r"&#x([0-9A-Fa-f]+);")
+_LONE_MROW = re.compile(r"<mrow>(<(mi|mn|mo)(?: [^>]*)?>[^<]*</\2>)</mrow>")
+_KEEP_ESCAPED = {0x26, 0x3C, 0x3E, 0x22}  # & < > "
+
+
+def compact_mathml(mathml: str) -> str:
+    """The same MathML in fewer bytes (a page has about 900 formulas): characters written as
+    themselves instead of ``&#x003D5;`` (the page is UTF-8), and the defaults HTML5 implies left
+    out (the MathML namespace of a ``<math>`` in HTML, ``display="inline"``), and an ``<mrow>``
+    around a single token dropped (MathML: an mrow with one argument is that argument)."""
+    mathml = _LONE_MROW.sub(r"\1", mathml)
+    mathml = mathml.replace(' xmlns="http://www.w3.org/1998/Math/MathML"', "").replace(' display="inline"', "")
+    return _CHAR_REF.sub(lambda m: m.group(0) if int(m.group(1), 16) in _KEEP_ESCAPED else chr(int(m.group(1), 16)),
+                         mathml)
 
 
 class _Renderer:
@@ -60,8 +78,23 @@ class _Renderer:
 
 
 def data_uri(name: str, data: bytes) -> str:
+    """The figure as a data URI; a PNG is embedded as lossless WebP (the same pixels in about 20 %
+    fewer bytes, which keeps the self-contained page under 1.5 MB)."""
+    if name.endswith(".png"):
+        return f"data:image/webp;base64,{base64.b64encode(lossless_webp(data)).decode()}"
     mime = mimetypes.guess_type(name)[0] or "application/octet-stream"
     return f"data:{mime};base64,{base64.b64encode(data).decode()}"
+
+
+def lossless_webp(png: bytes) -> bytes:
+    """``png`` re-encoded as lossless WebP (Pillow; method 4: 2 s for the report's figures, against
+    60 s for method 6's further 1 %)."""
+    from PIL import Image as PILImage
+
+    buf = io.BytesIO()
+    with PILImage.open(io.BytesIO(png)) as im:
+        im.save(buf, "WEBP", lossless=True, quality=100, method=4, exact=True)
+    return buf.getvalue()
 
 
 @lru_cache(maxsize=1)

@@ -21,6 +21,11 @@ def _params_cell(row: dict) -> str:
     return ", ".join(f"{k} = {v}" for k, v in row["params"].items()) if row["params"] else "defaults"
 
 
+def _closed_form_cell(row: dict) -> str:
+    """The threshold's closed form, typeset ('-' where the linearisation gives none)."""
+    return f"${row['closed_form_tex']}$" if row.get("closed_form_tex") else "-"
+
+
 def _threshold_lines(thresholds: list, captions: list) -> list:
     lines = [
         "## Stability thresholds",
@@ -63,7 +68,7 @@ def _threshold_lines(thresholds: list, captions: list) -> list:
         lp = [f"[{p['bracket'][0]}, {p['bracket'][1]}]" for p in r["linear_protocol"]] or ["-", "-"]
         linear = with_other_set(r["linear"], r.get(RING_OTHER_SET, {}).get("linear")) if r["linear"] else "none (stable)"
         lines.append(f"| {r['model']} | {r['motion']} | {_params_cell(r)} | {r['rate']} | "
-                     f"{linear} | {r['closed_form'] or '-'} | " + " | ".join(br + lp) + " |")
+                     f"{linear} | {_closed_form_cell(r)} | " + " | ".join(br + lp) + " |")
     lines += _ring_parameter_lines(thresholds)
     lines += _scan_lines(thresholds)
     lines += [

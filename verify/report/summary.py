@@ -44,8 +44,8 @@ def build(claims: list, studies: dict) -> dict:
                   "measures": [f"{m['measure']}: {m['value']}" for m in c.get("measures", ())]}
                  for c in claims if c["verdict"] == NOT_CHECKABLE and c.get("undecided")]
     return {
-        "olsson": {"rolling_rate": rolling["linear"], "rolling_form": rolling["closed_form"],
-                   "smooth_rate": smooth["linear"], "smooth_form": smooth["closed_form"],
+        "olsson": {"rolling_rate": rolling["linear"], "rolling_form": f"${rolling['closed_form_tex']}$",
+                   "smooth_rate": smooth["linear"], "smooth_form": f"${smooth['closed_form_tex']}$",
                    "eq41": verdict.get("eq-41"), "footnote2": verdict.get("footnote-2"),
                    "fig5": [verdict.get("fig-5-lhs"), verdict.get("fig-5-rhs")]},
         "divergence": {"eq45_cm_at_rest_max_rel_error": f"{eq45_exact:.1e}", "eq45_zero_vertical_spin": eq45_other,

@@ -17,9 +17,6 @@ from pathlib import Path
 
 from ..provenance import write_atomic
 
-IMAGE_SUFFIXES = (".png", ".svg")
-
-
 def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
     """Run every job (from the cache where unchanged), write results.json, figures/ and timing.json.
 
@@ -42,9 +39,9 @@ def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
         path = out / "figures" / name
         if not path.exists() or path.read_bytes() != data:
             write_atomic(path, data)
-    for stale in (out / "figures").glob("*"):
-        if stale.suffix in IMAGE_SUFFIXES and stale.name not in images and not results["failures"]:
-            stale.unlink()  # a figure no job draws any more (kept while a job failed: it may be that job's)
+    for name in _previous_figures(out) - set(images):
+        if not results["failures"]:  # kept while a job failed: it may be that job's
+            (out / "figures" / name).unlink(missing_ok=True)  # a figure no job draws any more
     write_atomic(out / "results.json", json.dumps(results, indent=2) + "\n")
     timing["jobs"] = {name: {"status": o.status, "seconds": round(o.seconds, 2), **({"detail": o.timing} if o.timing else {})}
                       for name, o in outcomes.items()}
@@ -52,6 +49,14 @@ def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
     timing["machine"] = {"platform": platform.platform(), "processor": platform.machine(), "cpus": os.cpu_count()}
     write_atomic(out / "timing.json", json.dumps(timing, indent=2) + "\n")
     return results
+
+
+def _previous_figures(out: Path) -> set:
+    """The figures the report last written to ``out`` named (others there, e.g. make bench's, are not ours)."""
+    try:
+        return {f["file"] for f in json.loads((out / "results.json").read_text()).get("figures", ())}
+    except (OSError, ValueError, AttributeError, TypeError, KeyError):
+        return set()
 
 
 def _last_job_seconds(out: Path) -> dict:

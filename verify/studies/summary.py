@@ -139,7 +139,7 @@ def threshold_case_rows(model: str, motion: str, params: dict) -> list:
     t = threshold(model, motion, params)
     row = {"model": model, "motion": motion, "params": params, "rate": t.name,
            "linear": None if t.value is None else mpmath.nstr(t.value, 15),
-           "closed_form": t.closed_form, "method": t.method, "brackets": {}, "linear_protocol": [],
+           "closed_form": t.closed_form, "closed_form_tex": t.closed_form_tex, "method": t.method, "brackets": {}, "linear_protocol": [],
            "variational": []}
     if _ring_set(model, params):
         other = threshold(model, motion, _other_params()).value

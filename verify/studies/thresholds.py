@@ -24,6 +24,8 @@ from models import get_model
 from models.steady import MOTIONS, exact_parameters, steady_state
 from models.symbols import phidot, psidot, theta, thetadot
 
+from ..mathtext import latex, symbol_latex
+
 OMEGA = sp.Symbol("Omega", positive=True)
 
 
@@ -37,6 +39,7 @@ class Threshold:
     closed_form: Optional[str]
     method: str
     w2: str  # the stability coefficient as a function of the rate (text)
+    closed_form_tex: Optional[str] = None  # closed_form in LaTeX (without dollars), for the report
 
 
 def jacobian_entries(model, steady: dict) -> tuple:
@@ -172,7 +175,8 @@ def _closed(name, motion, model, steady, subs, shown, dps) -> Threshold:
         value = mpmath.mpf(sp.N(crit.subs(subs), dps + 10))
     rate = "phidot0" if motion == "diameter-spin" else "psidot0"
     return Threshold(name, motion, shown, rate, value, f"{rate}^2 = {sp.sstr(sp.simplify(crit**2))}",
-                     "linearisation of the derived equations (sympy), closed form", sp.sstr(w2))
+                     "linearisation of the derived equations (sympy), closed form", sp.sstr(w2),
+                     f"{symbol_latex(rate)}^2 = {latex(sp.simplify(crit**2))}")
 
 
 def _ring_diameter(model, subs, shown, dps) -> Threshold:
@@ -277,7 +281,8 @@ def _sleeping(name, model, subs, shown, dps) -> Threshold:
                      f"(phidot+psidot)^2 = {sp.sstr(sp.factor(crit**2))}",
                      "linearisation of the derived equations in the complex tilt u = theta exp(i phi) at theta = 0 "
                      f"(sympy): u'' = A u + i B u', A = {sp.sstr(A)}, B = {sp.sstr(B)}; stable while B^2 > 4A",
-                     sp.sstr(disc))
+                     sp.sstr(disc),
+                     f"(\\dot{{\\phi}} + \\dot{{\\psi}})^2 = {latex(sp.factor(crit**2))}")
 
 
 # --- confirmation by the full nonlinear equations ----------------------------------------

@@ -243,7 +243,7 @@ def _check_fig19_citation():
     third = sp.simplify(paper.eq80_81_rows(I1, I3)[2].subs(theta, 0))
     spin = sp.simplify(third - I3 * (phiddot + psiddot)) == 0
     ok = n82 >= 3
-    from ..mathtext import equation
+    from ...mathtext import equation
 
     return decide(ok, f"as printed, Eq. 81 has {n81} components and Eq. 82 has {n82}; the third component of Eqs. 80-81 "
                       f"at $\\theta = 0$ is {equation(third, 0)}"

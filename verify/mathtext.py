@@ -1,4 +1,4 @@
-"""Typeset math in the claims' texts: sympy expressions as inline LaTeX, ``$...$``.
+"""Typeset math for the report's texts (claims, threshold closed forms): sympy expressions as inline LaTeX, ``$...$``.
 
 The report turns every ``$...$`` of a claim's text into MathML (markdown-it's dollarmath
 plugin, then latex2mathml), so a text says ``$\\dot{\\psi}_0^{2}$`` where ``str(expr)`` would
