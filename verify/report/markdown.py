@@ -12,7 +12,7 @@ import re
 from collections import Counter
 from typing import Optional
 
-from ..claims.base import ERRATUM, QUALIFIED, SEVERITIES, VERDICTS
+from ..claims.base import ERRATUM, VERDICTS
 from .markup import quote, text
 from .summary import SEVERITY_WORDS
 
