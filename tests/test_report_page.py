@@ -56,7 +56,8 @@ class Page(HTMLParser):
             self.sections.setdefault(self._section, []).append(data)
 
 
-MARKDOWN_LEFTOVERS = [r"\*\*\w", r"\w\*\*", r"!\[", r"\]\(", r"^#{1,6} ", r"<a id=", r"^\s*\|.*\|\s*$", r"`\w"]
+MARKDOWN_LEFTOVERS = [r"\*\*\w", r"\w\*\*", r"!\[", r"\]\(", r"^#{1,6} ", r"<a id=", r"^\s*\|.*\|\s*$", r"`\w",
+                      r"\$"]  # a dollar left over is math that was not typeset
 SYMPY_REPRS = [r"Matrix\(\[", r"\w\*\*\d", r"Rational\(", r"Symbol\(", r"Derivative\(", r"sqrt\(\w+\*"]
 
 
@@ -115,8 +116,9 @@ def test_every_figure_has_alt_text_and_decodes(committed):
 
 
 def test_no_markdown_markup_or_sympy_repr_shows(committed):
-    _, page, _ = committed
+    html, page, _ = committed
     assert not leftovers(page, MARKDOWN_LEFTOVERS)
+    assert 'class="tex"' not in html  # every formula became MathML
     assert not leftovers(page, SYMPY_REPRS)
 
 
@@ -234,6 +236,7 @@ def test_text_is_shown_literally_and_math_is_typeset(monkeypatch):
     # negative controls: the checks catch a sympy repr and a literal Markdown link
     assert leftovers(page, SYMPY_REPRS)  # "psidot_0**2", as the claim text says it
     assert leftovers(Page("<p>see ![x](y.png) and **bold</p>"), MARKDOWN_LEFTOVERS)
+    assert leftovers(Page("<p>an untypeset $x_1$</p>"), MARKDOWN_LEFTOVERS)
 
 
 def _sections_without_studies(results, benchmarks):
@@ -248,4 +251,5 @@ def test_markup_text_escapes_outside_math_only():
     assert text("theta_0 and _x") == "theta_0 and \\_x"
     assert text("$a_1*b$ c<d") == "$a_1*b$ c\\<d"
     assert text("x | y", table=True) == "x \\| y"
+    assert text("$|a|$ b", table=True) == "$\\|a\\|$ b"  # a table cell unescapes it before the math
     assert text("costs $5") == "costs \\$5"

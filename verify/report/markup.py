@@ -20,8 +20,8 @@ def text(s, table: bool = False) -> str:
     """
     out = []
     for i, part in enumerate(_MATH.split(str(s).replace("\n", " "))):
-        if i % 2:  # math: passed through for the math renderer
-            out.append(part)
+        if i % 2:  # math: passed through for the math renderer (a table cell unescapes \| before it)
+            out.append(part.replace("|", "\\|") if table else part)
             continue
         part = _SPECIAL.sub(r"\\\1", part)
         part = _LONE_UNDERSCORE.sub(r"\\_", part)
@@ -47,3 +47,13 @@ def quote(fragments) -> list:
     return lines[:-1]
 
 
+
+
+def inline_quote(joined: str, table: bool = False) -> str:
+    """A quote joined with `` ... `` (results.json's summary) as one line of Markdown: a fragment
+    that is a bare LaTeX equation is typeset inline, the rest shown literally (:func:`text`)."""
+    parts = []
+    for frag in joined.split(" ... "):
+        bare = "$" not in frag and _BARE_TEX.search(frag)
+        parts.append(text(f"${frag.strip()}$" if bare else frag, table=table))
+    return " ... ".join(parts)

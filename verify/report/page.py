@@ -56,7 +56,7 @@ class _Renderer:
     def __init__(self, images: dict, alts: dict):
         self.images, self.alts = images, alts
         md = MarkdownIt("commonmark", {"html": True}).enable("table")
-        dollarmath_plugin(md, double_inline=True, allow_digits=False, renderer=_math)
+        dollarmath_plugin(md, renderer=_math)
         md.add_render_rule("image", lambda renderer, tokens, idx, options, env: self._image(renderer, tokens, idx,
                                                                                             options, env))
         self.md = md

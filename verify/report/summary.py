@@ -8,7 +8,7 @@ results.json; :func:`render` turns that dict, and nothing else, into Markdown.
 from __future__ import annotations
 
 from ..claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
-from .markup import text
+from .markup import inline_quote, text
 
 SEVERITY_WORDS = {"result": "a number or conclusion is wrong", "typo": "the printed form is wrong, what follows is right",
                   "rounding": "a last printed digit"}
@@ -84,7 +84,7 @@ def render(s: dict) -> list:
         lines += ["**Errata, most serious first** (severity: " +
                   "; ".join(f"*{k}*: {v}" for k, v in SEVERITY_WORDS.items()) + "):", "",
                   "| severity | where | the paper prints | correction |", "|---|---|---|---|"]
-        lines += [f"| {e['severity']} | [{text(e['source'])}](#{e['id']}) | {text(e['quote'], table=True)} "
+        lines += [f"| {e['severity']} | [{text(e['source'])}](#{e['id']}) | {inline_quote(e['quote'], table=True)} "
                   f"| {text(e['correction'], table=True)} |"
                   for e in s["errata"]]
         lines.append("")
