@@ -117,11 +117,40 @@ class Model:
     # a_C . Z with thetaddot, phiddot, psiddot left as symbols: normal_force is 1 + this / g on shell
     # (paper Eq. 6); the terminal event reads N through it and the right-hand side's own expressions
     vertical_acceleration: Optional[sp.Expr] = None
+    # (a_C . X, a_C . Y) with the accelerations left as symbols: the horizontal contact force is
+    # M times this (paper Eq. 6, gravity is vertical).  None without rolling contact: a smooth
+    # plane has no friction, a fixed pivot's force is not friction, the effective Lagrangian no contact
+    horizontal_acceleration: Optional[tuple] = None
     chaplygin: Optional[ChaplyginSystem] = None
     constraints: tuple = field(default_factory=tuple)  # (name, expr == 0 at start, description)
     units: str = ""
     relations: tuple = field(default_factory=tuple)  # (text, predicate(params dict of floats))
     dissipation: Optional[sp.Expr] = None  # power lost (>= 0) by a dissipative term: E + int dissipation dt is conserved
+
+    @property
+    def horizontal_force(self) -> Optional[tuple]:
+        """(F . X, F . Y) / (M g): the horizontal contact force on shell, or None (paper Eq. 6).
+
+        ``horizontal_acceleration`` / g with this model's own accelerations substituted (a paper
+        variant's printed rows give its own force, as they give its ``normal_force``).
+        """
+        if self.horizontal_acceleration is None:
+            return None
+        from .symbols import ACCELERATIONS, g
+
+        on_shell = dict(zip(ACCELERATIONS, self.accelerations))
+        return tuple(a.subs(on_shell) / g for a in self.horizontal_acceleration)
+
+    @property
+    def friction_required(self) -> Optional[sp.Expr]:
+        """mu_req = |F_h| / N: the smallest friction coefficient that lets the body roll, or None.
+
+        Meaningful where N > 0 only (where N <= 0 the contact is lost, whatever the friction).
+        """
+        force = self.horizontal_force
+        if force is None or self.normal_force is None:
+            return None
+        return sp.sqrt(force[0] ** 2 + force[1] ** 2) / self.normal_force
 
     @property
     def parameter_names(self) -> tuple:

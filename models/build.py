@@ -59,6 +59,7 @@ def rolling_model(
         domain=domain,
         normal_force=d.normal_force,
         vertical_acceleration=d.vertical_acceleration,
+        horizontal_acceleration=d.horizontal_acceleration,
         chaplygin=chaplygin,
         units=unit,
     )
@@ -99,4 +100,5 @@ def damped_model(d, couple, *, name: str, title: str, source: str, parameters: t
     energy = replace(energy, description=energy.description + "; not conserved: E + W is (W = work of the couple)")
     return Model(name=name, title=title, equations="derived", source=source, parameters=parameters,
                  accelerations=acc, velocity_xy=d.velocity_xy, invariants=(energy,), domain=domain,
-                 normal_force=normal, vertical_acceleration=d.vertical_acceleration, chaplygin=None, units="m R^2", dissipation=dissipation, relations=relations)
+                 normal_force=normal, vertical_acceleration=d.vertical_acceleration,
+                 horizontal_acceleration=d.horizontal_acceleration, chaplygin=None, units="m R^2", dissipation=dissipation, relations=relations)

@@ -26,7 +26,7 @@ from functools import lru_cache
 import sympy as sp
 
 from .symbols import (
-    ACCELERATIONS, g, omega_body, omega_body_dot, omega_frame, phidot, psidot,
+    ACCELERATIONS, g, omega_body, omega_body_dot, omega_frame, phi, phidot, psidot,
     theta, thetaddot, phiddot, psiddot, thetadot, time_derivative, to_inertial,
     vertical_in_frame,
 )
@@ -42,6 +42,7 @@ class Derivation:
     velocity_xy: tuple  # inertial horizontal components of v_C
     height_cm: sp.Expr  # z_C, the height of C above the plane
     vertical_acceleration: sp.Expr  # a_C . Z, second derivatives left symbolic
+    horizontal_acceleration: tuple | None  # (a_C . X, a_C . Y), second derivatives left symbolic; None if smooth
     kinetic: sp.Expr
     potential: sp.Expr
     normal_force: sp.Expr  # N / (M g)
@@ -99,10 +100,25 @@ def derive(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr, contact: str = "r
         v_in = to_inertial(v)
         vxy = (_simplify(v_in[0]), _simplify(v_in[1]))
         chaplygin = _chaplygin_matrix(w, wdot, on_shell)
+        a_horizontal = _horizontal_in_fixed_frame(a)
     else:
         vxy = (sp.Integer(0), sp.Integer(0))
         chaplygin = None
-    return Derivation(rows, acc, v, vxy, height, a_vertical, kinetic, potential, normal, chaplygin)
+        a_horizontal = None  # no friction: F = N Z, nothing horizontal to ask of the plane
+    return Derivation(rows, acc, v, vxy, height, a_vertical, a_horizontal, kinetic, potential, normal, chaplygin)
+
+
+def _horizontal_in_fixed_frame(a) -> tuple:
+    """(a . X, a . Y) of a vector given in 1-2-3 components, exactly and without expanding.
+
+    The horizontal plane is spanned by e1 = (cos phi, sin phi, 0) and h = cos(theta) e2 -
+    sin(theta) e3 = (-sin phi, cos phi, 0) (Z = sin(theta) e2 + cos(theta) e3, paper Fig. 1), so
+    the horizontal part of ``a`` is a1 e1 + (a2 cos theta - a3 sin theta) h.  Since gravity is
+    vertical, these over g are the horizontal contact force F_h / (M g) (paper Eq. 6).
+    """
+    along_e1 = a[0]
+    along_h = a[1] * sp.cos(theta) - a[2] * sp.sin(theta)
+    return (along_e1 * sp.cos(phi) - along_h * sp.sin(phi), along_e1 * sp.sin(phi) + along_h * sp.cos(phi))
 
 
 def _chaplygin_matrix(w, wdot, on_shell) -> sp.Matrix:

@@ -26,7 +26,7 @@ def test_trajectory_json_in_double(capsys):
     assert code == 0
     rec = json.loads(out)
     assert list(rec) == ["model", "equations", "precision", "params", "t_end", "outcome", "t", "steps", "state",
-                         "invariants"]
+                         "invariants", "friction_required"]
     assert rec["model"] == "disk" and rec["equations"] == "derived" and rec["precision"] == "double"
     assert rec["params"] == {"k": 0.25, "g": 980.0}
     assert rec["outcome"] == "ok" and rec["t"] == 1.0 and rec["steps"] > 0

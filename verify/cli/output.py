@@ -21,7 +21,21 @@ def trajectory_record(sol) -> dict:
         "steps": sol.steps,
         "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
         "invariants": {name: _drifts(p, tr) for name, tr in sol.invariants.items()},
+        "friction_required": _friction(p, sol),
     }
+
+
+def _friction(p, sol) -> dict | None:
+    """The largest friction coefficient the run needs (mu_req = |F_h| / N) and when; None without rolling
+    contact.  Points where N <= 0 (NaN) are left out; ``max`` is null if every point is one."""
+    values = sol.friction_required
+    if values is None:
+        return None
+    finite = [i for i, v in enumerate(values) if not math.isnan(float(v))]
+    if not finite:
+        return {"max": None, "t_max": None}
+    i = max(finite, key=lambda j: values[j])  # compared in the run's precision; the first of equal maxima
+    return {"max": p.to_json(values[i]), "t_max": p.to_json(sol.t[i])}
 
 
 def _drifts(p, tr) -> dict:
@@ -53,6 +67,9 @@ def _text(record: dict) -> str:
     lines += [f"  {n:<12} {v['initial']}  {v['final']}  {_num(v['max_abs_drift'], '.3e')}  {_num(v['max_rel_drift'], '.3e')}"
               f"  {_num(v['max_drift_vs_terms_in_eps'], '.3g')}"
               for n, v in record["invariants"].items()]
+    friction = record.get("friction_required")
+    if friction is not None:
+        lines.append(f"friction    mu_req = |F_h| / N needed to roll: max {_num(friction['max'], '')} at t = {_num(friction['t_max'], '')}")
     return "\n".join(lines)
 
 

@@ -155,3 +155,38 @@ def compile_model(model: Model, precision: Precision) -> CompiledModel:
 def _n_pars(model: Model, exprs) -> int:
     used = [i for i, p in enumerate(model.parameters) if any(sp.sympify(e).has(p.symbol) for e in exprs)]
     return max(used) + 1 if used else 0
+
+
+@dataclass(frozen=True)
+class FrictionFunction:
+    """A cfunc of the state: [N/(Mg), mu_req] with mu_req = |F_h| / N (paper Eq. 6), at one precision.
+
+    Both are written on the right-hand side's own expressions for the accelerations (as
+    :func:`contact_event` is), so heyoka's decomposition computes them once for N and F_h alike.
+    ``n_pars``: how many of the model's parameters, in order, the cfunc reads.
+    """
+
+    function: object
+    n_pars: int
+
+
+@lru_cache(maxsize=None)
+def friction_function(model: Model, precision: Precision):
+    """The :class:`FrictionFunction` of a rolling model, or None without rolling contact.
+
+    Compiled apart from :func:`compile_model` and only when asked for: a run that never reads
+    its required friction pays nothing for it.
+    """
+    normal = contact_event_function(model)
+    if model.horizontal_acceleration is None or normal is None:
+        return None
+    variables = tuple(hy.make_vars(*STATE_NAMES))
+    mapping = symbol_map(model, variables)
+    accelerations = [to_heyoka(a, mapping) for a in model.accelerations]
+    mapping.update(zip(ACCELERATIONS, accelerations))
+    n = to_heyoka(normal, mapping)
+    fx, fy = (to_heyoka(a / g, mapping) for a in model.horizontal_acceleration)
+    mu = hy.sqrt(fx * fx + fy * fy) / n
+    cf = hy.cfunc([n, mu], list(variables), **precision.integrator_kwargs())
+    exprs = [normal, *model.horizontal_acceleration, *model.accelerations]
+    return FrictionFunction(cf, _n_pars(model, exprs))

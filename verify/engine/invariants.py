@@ -22,7 +22,7 @@ from models.base import Model
 from models.symbols import STATE
 
 from .chaplygin import chaplygin_integrals
-from .compile import CompiledModel
+from .compile import CompiledModel, friction_function
 
 
 #: The relative drift is NaN where |I(0)| <= NEGLIGIBLE_INITIAL * eps * term scale: see
@@ -193,6 +193,19 @@ def evaluate(compiled: CompiledModel, y: np.ndarray, params: dict) -> dict:
     return result, normal
 
 
+def friction_required(compiled: CompiledModel, y: np.ndarray, params: dict):
+    """mu_req = |F_h| / N at every column of y in the run's precision; NaN where N <= 0; None without rolling contact."""
+    friction = friction_function(compiled.model, compiled.precision)
+    if friction is None:
+        return None
+    n = y.shape[1]
+    names = compiled.model.parameter_names[:friction.n_pars]
+    vector = compiled.precision.array([params[name] for name in names])
+    pars = np.ascontiguousarray(np.repeat(vector[:, None], n, axis=1))
+    normal, mu = friction.function(np.ascontiguousarray(y), pars=pars)
+    return np.where(normal > 0, mu, np.full_like(mu, math.nan))
+
+
 def traces(compiled: CompiledModel, values: dict, y: np.ndarray, params: dict) -> dict:
     model, eps = compiled.model, compiled.precision.eps
     out = {}
@@ -207,7 +220,7 @@ def traces(compiled: CompiledModel, values: dict, y: np.ndarray, params: dict) -
 
 
 class OnDemand:
-    """The invariants of a run (and the normal force), evaluated on first request and kept.
+    """The invariants of a run (and the normal force, and apart the required friction), evaluated on first request and kept.
 
     Holds the run's states on its whole output grid, t = 0 included, so the drifts cover every
     output of the run whatever part of it is returned; ``drop_start`` removes t = 0 from the
@@ -220,6 +233,7 @@ class OnDemand:
         self._compiled, self._y, self._params, self._drop = compiled, y, params, drop_start
         self._normal = normal
         self._traces = None
+        self._friction = None  # (values,) once evaluated: the values may be None
         self._lock = threading.Lock()
 
     def __getstate__(self):  # a Trajectory stays picklable (process pools): the lock is not
@@ -239,6 +253,15 @@ class OnDemand:
         if self._normal is None and self._compiled.has_normal_force and self._traces is None:
             self._evaluate()
         return self._start(self._normal)
+
+    @property
+    def friction_required(self):
+        """mu_req = |F_h| / N on the grid (NaN where N <= 0), or None without rolling contact."""
+        if self._friction is None:
+            with self._lock:
+                if self._friction is None:
+                    self._friction = (friction_required(self._compiled, self._y, self._params),)
+        return self._start(self._friction[0])
 
     @property
     def traces(self) -> dict:

@@ -51,6 +51,11 @@ class Trajectory:
         kept; the drifts cover every output of the run.
     normal_force : ndarray or None (property)
         N / (M g) on the grid (contact holds while it is positive); None without a contact.
+    friction_required : ndarray or None (property)
+        mu_req = |F_h| / N on the grid, in the run's precision: the smallest coefficient of
+        friction with which the body rolls as computed (F_h the horizontal contact force,
+        paper Eq. 6); NaN where N <= 0.  None for a model without rolling contact.  Evaluated
+        when first read (a cfunc compiled for it then), apart from the invariants.
     """
 
     model: str
@@ -76,6 +81,10 @@ class Trajectory:
     @property
     def normal_force(self):
         return self.evaluation.normal_force
+
+    @property
+    def friction_required(self):
+        return self.evaluation.friction_required
 
     @property
     def success(self) -> bool:
