@@ -99,6 +99,16 @@ def test_every_key_ingredient_matters():
     assert key_of(job) == base
 
 
+def test_the_simd_width_the_runs_use_is_in_the_key(monkeypatch):
+    """Batch runs take their width from verify.engine.lanes (VERIFY_SIMD_WIDTH overrides heyoka's
+    choice) and their last bits depend on it: a result made at one width is not served at another."""
+    job = Job("maps/x", "map_job", ("disk", "diameter-spin"), ("verify.studies.summary",))
+    monkeypatch.setenv("VERIFY_SIMD_WIDTH", "2")
+    two = key_of(job)
+    monkeypatch.setenv("VERIFY_SIMD_WIDTH", "3")
+    assert key_of(job) != two
+
+
 def test_the_registry_covers_every_claim_module_once_with_unique_names():
     from verify.claims import SECTION_MODULES
 
@@ -125,3 +135,17 @@ def test_results_json_is_assembled_from_records_in_registry_order():
     assert [c["id"] for c in results["claims"]] == [c.id for c in all_claims()]
     assert results["failures"] == []
     assert all(c["section"] for c in results["claims"])
+
+
+def test_render_only_without_results_is_bad_input_and_writes_nothing(tmp_path, capsys):
+    from verify.cli import main
+
+    missing = tmp_path / "new"
+    assert main(["report", "--render-only", "--out", str(missing)]) == 2
+    assert not missing.exists()
+    assert "results.json" in capsys.readouterr().err
+    (tmp_path / "results.json").write_text("{not json")
+    assert main(["report", "--render-only", "--out", str(tmp_path)]) == 2
+    assert "cannot be read as JSON" in capsys.readouterr().err
+    assert main(["report", "--render-only", "--fresh", "--out", str(tmp_path)]) == 2
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["results.json"]

@@ -293,3 +293,18 @@ def test_ring_thresholds_differ_between_the_sets_in_the_fourth_decimal():
             annular = threshold("ring", motion, ring.parameter_set("annular")).value
             assert annular == threshold("ring", motion).value  # the defaults are the annular set
             assert mpmath.mpf(lo) < abs(printed - annular) < mpmath.mpf(hi), (motion, printed - annular)
+
+
+@pytest.mark.parametrize("model", ["hurricane", "gyroscope"])
+@pytest.mark.parametrize("t_end", ["10", "-10"])
+@pytest.mark.parametrize("factor", ["0.9", "0.999", "1.1"])
+def test_linear_grows_stops_early_with_the_answer_of_the_whole_grid(model, t_end, factor):
+    """linear_grows stops at a bound or the first value over the limit; its answer must be that of
+    the maximum over the whole grid (linear_deviation), for time run backwards too (t_end < 0, where
+    a decaying root grows: a bound written for t >= 0 once answered False where the grid says True)."""
+    from verify.studies.thresholds import GROWTH, linear_deviation, linear_grows
+
+    with mpmath.workdps(30):
+        rate = threshold(model, "sleeping").value * mpmath.mpf(factor)
+    whole = linear_deviation(model, "sleeping", rate, "1e-6", t_end=t_end) > GROWTH * 1e-6
+    assert linear_grows(model, "sleeping", rate, "1e-6", {}, t_end=t_end) == whole

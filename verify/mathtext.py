@@ -27,8 +27,8 @@ _GREEK = {
 #: Names that are not read by the rule of :func:`symbol_latex`.
 _SPECIAL = {
     "th": r"\theta",  # the small angle of a series in theta
-    "J1": r"\tilde{I}_1",
-    "L_perp": r"L_\perp",  # the horizontal component of L (Eqs. 19, 51)  # I1 + 4, the moment the paper writes I1 in Eqs. 87-93 (tilde dropped there)
+    "J1": r"\tilde{I}_1",  # I1 + 4, the moment the paper writes I1 in Eqs. 87-93 (tilde dropped there)
+    "L_perp": r"L_\perp",  # the horizontal component of L (Eqs. 19, 51)
 }
 _NAME = re.compile(r"^(?P<base>[A-Za-z]+?)(?P<dots>ddot|dot)?(?:_?(?P<sub>\d+)|_(?P<word>[A-Za-z]+))?$")
 

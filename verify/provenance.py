@@ -61,6 +61,17 @@ def versions() -> dict:
     }
 
 
+def cpu_model() -> str:
+    """The CPU's model name (``/proc/cpuinfo``), or "unknown"."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown"
+
+
 def provenance(precisions) -> dict:
     """Versions, the sources' commit and hash, and the precisions used (ladder order, no repeats)."""
     from .precision import parse_precision

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import heyoka as hy
 
-from ..provenance import source_commit, write_atomic
+from ..provenance import cpu_model, source_commit, write_atomic
 from .compile_cost import compile_cost
 from .energy import energy_growth
 from .ensembles import ensemble_against_bare
@@ -25,13 +25,7 @@ from .work_precision import same_accuracy_speedup, work_precision
 def machine() -> dict:
     info = {"platform": platform.platform(), "processor": platform.machine(), "cpus": os.cpu_count(),
             "python": platform.python_version(), "heyoka": hy.__version__,
-            "simd_size": hy.recommended_simd_size()}
-    try:
-        model = [line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
-                 if line.startswith("model name")]
-        info["cpu"] = model[0] if model else "unknown"
-    except OSError:
-        info["cpu"] = "unknown"
+            "simd_size": hy.recommended_simd_size(), "cpu": cpu_model()}
     return info
 
 

@@ -211,14 +211,16 @@ def _output_folder(folder: str) -> str:
 
 
 def cmd_report(args, session: Session) -> int:
-    from ..report.write import ReportIncomplete, write_report
+    from ..report.write import MissingResults, ReportIncomplete, read_results, write_report
 
     if args.fresh and args.render_only:
         raise UsageError("--fresh recomputes every job and --render-only computes none; give one of them")
     try:
+        if args.render_only:
+            read_results(args.out)  # before anything is created: nothing to render from is bad input
         write_report(_output_folder(args.out), fresh=args.fresh, render_only=args.render_only)
-    except ValueError as err:  # no results.json to render from
-        raise UsageError(str(err)) from None
+    except MissingResults as err:
+        raise UsageError(f"--out {args.out}: {err}") from None
     except ReportIncomplete as err:
         print(f"report incomplete: {err}", file=sys.stderr)
         return 1

@@ -24,7 +24,8 @@ import json
 import platform
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent.parent
+from ..provenance import ROOT, cpu_model
+
 PACKAGES = ("models", "verify")
 
 
@@ -107,25 +108,20 @@ def _file_digest(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
-@functools.lru_cache(maxsize=1)
 def environment() -> dict:
-    """Versions and machine: part of every key."""
-    import heyoka
-
+    """Versions and machine: part of every key.  The SIMD width is the one the batch runs use
+    (:func:`verify.engine.lanes.simd_width`, which ``VERIFY_SIMD_WIDTH`` overrides): results
+    differ in the last bits between widths."""
+    from ..engine.lanes import simd_width
     from ..provenance import versions
 
-    return {"versions": versions(), "machine": platform.machine(), "processor": _cpu_model(),
-            "simd_size": heyoka.recommended_simd_size()}
+    return {"versions": _versions(versions), "machine": platform.machine(), "processor": cpu_model(),
+            "simd_width": simd_width()}
 
 
-def _cpu_model() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor()
+@functools.lru_cache(maxsize=1)
+def _versions(versions) -> dict:
+    return versions()
 
 
 def job_key(name: str, entries, args, extra_files=(), code: str = "") -> str:

@@ -34,7 +34,7 @@ class Outcome:
     data: Any = None
     images: list = field(default_factory=list)
     timing: dict = field(default_factory=dict)
-    seconds: float = 0.0
+    seconds: float = 0.0  # wall time of the job's computation (for a cached one, when it was computed)
     error: Optional[str] = None
 
 
@@ -118,7 +118,7 @@ def run_jobs(jobs, cache: JobCache = None, fresh: bool = False, workers: Optiona
                 raise
     computed = [o for o in outcomes.values() if o.status == "computed"]
     failed = [o for o in outcomes.values() if o.status == "failed"]
-    say(f"{n} jobs: {len(computed)} computed ({sum(o.seconds for o in computed):.1f} s of work), "
+    say(f"{n} jobs: {len(computed)} computed (their wall times sum to {sum(o.seconds for o in computed):.1f} s), "
         f"{n - len(computed) - len(failed)} from the cache, {len(failed)} failed; "
         f"{time.monotonic() - t0:.1f} s on {workers} worker(s)")
     return {job.name: outcomes[job.name] for job in jobs}

@@ -43,7 +43,7 @@ def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
         if not results["failures"]:  # kept while a job failed: it may be that job's
             (out / "figures" / name).unlink(missing_ok=True)  # a figure no job draws any more
     write_atomic(out / "results.json", json.dumps(results, indent=2) + "\n")
-    timing["jobs"] = {name: {"status": o.status, "seconds": round(o.seconds, 2), **({"detail": o.timing} if o.timing else {})}
+    timing["jobs"] = {name: {"status": o.status, "wall_seconds": round(o.seconds, 2), **({"detail": o.timing} if o.timing else {})}
                       for name, o in outcomes.items()}
     timing["total_seconds"] = round(time.monotonic() - t0, 1)
     timing["machine"] = {"platform": platform.platform(), "processor": platform.machine(), "cpus": os.cpu_count()}
@@ -66,23 +66,37 @@ def _last_job_seconds(out: Path) -> dict:
         jobs = json.loads((out / "timing.json").read_text()).get("jobs", {})
     except (OSError, ValueError):
         return {}
-    return {name: j["seconds"] for name, j in jobs.items()
-            if isinstance(j, dict) and j.get("seconds") and j.get("status") != "failed"}
+    return {name: j["wall_seconds"] for name, j in jobs.items()
+            if isinstance(j, dict) and j.get("wall_seconds") and j.get("status") != "failed"}
+
+
+class MissingResults(ValueError):
+    """No readable results.json to render from (the message names the file)."""
+
+
+def read_results(out) -> dict:
+    """``out/results.json``, or :class:`MissingResults` naming it."""
+    path = Path(out) / "results.json"
+    try:
+        return json.loads(path.read_text())
+    except FileNotFoundError:
+        raise MissingResults(f"no {path}: run 'python -m verify report' without --render-only first") from None
+    except (OSError, ValueError) as err:
+        raise MissingResults(f"{path} cannot be read as JSON ({err}); rerun 'python -m verify report'") from None
 
 
 def render(out="reports", say=None) -> None:
-    """REPORT.md, report.html and conservation.{md,json} from ``out/results.json`` and ``out/figures/``."""
+    """REPORT.md, report.html and conservation.{md,json} from ``out/results.json`` and ``out/figures/``.
+
+    All four are rendered before any is written, so a results.json the renderers cannot read
+    leaves the old files as they were."""
     from .conservation import render_markdown as conservation_markdown
     from .markdown import render_markdown
     from .page import render_html
 
     out = Path(out)
     say = say or (lambda s: print(s, file=sys.stderr, flush=True))
-    path = out / "results.json"
-    try:
-        results = json.loads(path.read_text())
-    except FileNotFoundError:
-        raise ValueError(f"no {path}: run 'python -m verify report' without --render-only first") from None
+    results = read_results(out)
     images = {}
     for f in results.get("figures", ()):
         try:
@@ -90,11 +104,12 @@ def render(out="reports", say=None) -> None:
         except FileNotFoundError:
             say(f"  figure {f['file']} named in results.json is missing from {out / 'figures'}")
     benchmarks = latest_benchmarks(out)
-    write_atomic(out / "REPORT.md", render_markdown(results, benchmarks))
-    write_atomic(out / "report.html", render_html(results, images, benchmarks))
-    write_atomic(out / "conservation.md", conservation_markdown(results["conservation"], results["provenance"]))
-    write_atomic(out / "conservation.json",
-                 json.dumps({"rows": results["conservation"], "provenance": results["provenance"]}, indent=2) + "\n")
+    files = {"REPORT.md": render_markdown(results, benchmarks), "report.html": render_html(results, images, benchmarks),
+             "conservation.md": conservation_markdown(results["conservation"], results["provenance"]),
+             "conservation.json": json.dumps({"rows": results["conservation"], "provenance": results["provenance"]},
+                                             indent=2) + "\n"}
+    for name, text in files.items():
+        write_atomic(out / name, text)
 
 
 class ReportIncomplete(RuntimeError):

@@ -382,13 +382,14 @@ def linear_deviation(name, motion, rate, tilt, params=None, t_end="10", n: int =
 def _sleeping_solution(f, rate, tilt, phidot0, t_max):
     """(t -> |u(t)|, a bound on |u| for 0 <= t <= t_max) of the sleeping motion's u'' = A u + i B u'
     (:func:`linear_deviation`), as 30-digit mpmath numbers; call it, and the function it returns,
-    under ``workdps(30)``.  u = c1 exp(l1 t) + c2 exp(l2 t), so |u| <= sum |c_k| exp(max(Re l_k, 0) t_max)."""
+    under ``workdps(30)``.  u = c1 exp(l1 t) + c2 exp(l2 t), so for t between 0 and t_max (either
+    sign) |u| <= sum |c_k| exp(max(Re l_k t_max, 0)): a decaying root grows backwards in time."""
     A, B = f(rate)
     root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
     l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
     v0 = 1j * mpmath.mpf(phidot0) * tilt
     c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
-    bound = sum(abs(c) * mpmath.exp(max(l.real, 0) * t_max) for c, l in ((c1, l1), (c2, l2)))
+    bound = sum(abs(c) * mpmath.exp(max(l.real * t_max, 0)) for c, l in ((c1, l1), (c2, l2)))
     return (lambda t: abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t))), bound
 
 
@@ -432,7 +433,7 @@ def linear_grows(name, motion, rate, tilt, params, t_end="10", growth=GROWTH) ->
     """Whether :func:`linear_deviation` exceeds ``growth`` x the tilt, with the same answer for every input.
 
     For the oscillating solution (w2 > 0) every value on the grid is at most |d*| + |tilt - d*|
-    (to 30 digits; for the sleeping motion sum |c_k| exp(max(Re l_k, 0) t_end)); when that
+    (to 30 digits; for the sleeping motion sum |c_k| exp(max(Re l_k t_end, 0))); when that
     bound, with :data:`_BOUND_MARGIN`, is below the limit no value can exceed it, and the 401
     cosines (exponentials) are not evaluated.  Otherwise the grid is searched, its end first (where
     a growing solution is largest), and the search stops at the first value above the limit: the
