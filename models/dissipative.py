@@ -51,13 +51,15 @@ The two laws
   The formula usually quoted as Moffatt's, t0 = alpha0^3 m / (2 pi mu a) (with the breakdown time
   tau ~ (2a/9g)^(3/5) (2 pi mu a/m)^(1/5), i.e. alpha^3 = (2 pi mu a/m)(t0 - t)), is twice this: it is
   what half the dissipation above, Phi = pi mu a^4 Omega^2 / (4 h_gap), would give with the same E
-  and Omega.  The factor is not in E(alpha) nor in Omega(alpha) (both derived from the model and
-  equal to Moffatt's Eqs. 1-2 as quoted by others); it sits between the Couette Phi and the quoted
-  rate law.  Moffatt's printed Phi and any later correction (Nature 408, 540 (2000)) were not
-  available to us, so which of the two he wrote is not settled here; the couple is defined by
-  the Couette Phi above and its t0 follows from it.  The coefficient is anyway a model of the
-  film, not a measured number: the same Couette film over the wedge-shaped gap
-  h = alpha (a + r cos(theta)) dissipates (4 pi / 3) mu a^3 Omega^2 / alpha (8/3 of the above), a
+  and Omega.  The factor is not in E(alpha) nor in Omega(alpha): both are derived from the model
+  and agree with Moffatt's Eqs. 1-2 as others quote them (Omega^2 alpha = 4g/a, E = (3/2) M g a
+  sin(alpha): Kilty, http://www.kilty.com/euler.htm; Bildsten, arXiv:gr-qc/0102046, with the gap
+  "of width ~ a alpha"); it sits between the Couette Phi and the quoted rate law (t0 and tau as in
+  Wikipedia's "Euler's disk").  Moffatt's printed Phi and any later correction were not available
+  to us, so which of the two he wrote is not settled here; the couple is defined by the Couette
+  Phi above and its t0 follows from it.  The coefficient is anyway a model of the film, not a
+  measured number: the same Couette film over the wedge-shaped gap h = alpha (a + r cos(angle))
+  dissipates (4 pi / 3) mu a^3 Omega^2 / alpha (8/3 of the above), a
   squeeze film (Reynolds) in the uniform gap (pi / 8) mu a^3 Omega^2 / alpha.  The study's runs
   set c directly (:data:`verify.studies.dissipation.STUDY_C`), so no reported number depends on
   this factor; only a reading of c in terms of mu, a, m does.
@@ -71,7 +73,7 @@ The approximation
 -----------------
 Both published laws are stated for the steady motion only (thetadot = 0, phidot^2 =
 g/(k sin theta), omega3 = 0: the family on which Eq. 45 is exact).  The couple reproduces the
-published dissipation rate exactly on that family (Moffatt's with sin(alpha) for alpha in
+stated dissipation rate exactly on that family (the Couette Phi with sin(alpha) for alpha in
 the gap, a relative O(alpha^2) difference); away from it (nutation, thetadot != 0,
 omega3 != 0) the form ``c sin^-n |omega_perp|^2`` is a modelling choice, not a result of either
 paper: it is the simplest smooth, frame-indifferent term that is quadratic in the rocking
