@@ -70,11 +70,14 @@ class Freeze:
         State rows set to fixed values when the lane freezes.
     park_between : (row, par_a, par_b), optional
         A state row set to the mean of two of the lane's parameters.
+    record : sequence of (row, par)
+        State rows copied into parameters before the lane is parked: the state at the event
+        (heyoka calls a terminal event's callback with the lane at its event time).
     """
 
-    def __init__(self, lanes: Lanes, code: int, park=(), park_between=None):
+    def __init__(self, lanes: Lanes, code: int, park=(), park_between=None, record=()):
         self.lanes, self.code = lanes, float(code)
-        self.park, self.between = tuple(park), park_between
+        self.park, self.between, self.record = tuple(park), park_between, tuple(record)
 
     def __call__(self, ta, d_sgn, lane):
         where, pars, state = self.lanes, ta.pars, ta.state
@@ -83,6 +86,8 @@ class Freeze:
         pars[where.alive, lane] = 0.0
         pars[where.reason, lane] = self.code
         pars[where.t_stop, lane] = ta.time[lane]
+        for row, par in self.record:
+            pars[par, lane] = state[row, lane]
         if self.between is not None:
             row, a, b = self.between
             state[row, lane] = 0.5 * (pars[a, lane] + pars[b, lane])
@@ -92,7 +97,7 @@ class Freeze:
 
 
 def batch_system(system, events, lanes: Lanes, n_pars: int, batch_size: int, cooldown: float,
-                 state, default_pars, park=(), park_between=None):
+                 state, default_pars, park=(), park_between=None, record=()):
     """A ``taylor_adaptive_batch`` template of ``system`` with freezing terminal events.
 
     Parameters
@@ -113,10 +118,11 @@ def batch_system(system, events, lanes: Lanes, n_pars: int, batch_size: int, coo
         A regular state for the template's lanes (overwritten by every ensemble iteration).
     default_pars : sequence of float
         The model's parameters for the template's lanes (the first parameters).
-    park, park_between
-        Where a frozen lane is parked (:class:`Freeze`).
+    park, park_between, record
+        Where a frozen lane is parked, and what of its state at the event is kept (:class:`Freeze`);
+        a record's parameter must sit below one that is read, as ``reason`` and ``t_stop`` do.
     """
-    t_events = [hy.t_event_batch(ex, direction=d, callback=Freeze(lanes, i + 1, park, park_between),
+    t_events = [hy.t_event_batch(ex, direction=d, callback=Freeze(lanes, i + 1, park, park_between, record),
                                  cooldown=cooldown) for i, (_, ex, d) in enumerate(events)]
     lanes_state = np.repeat(np.asarray(state, float)[:, None], batch_size, axis=1)
     pars = np.zeros((n_pars, batch_size))

@@ -219,11 +219,12 @@ class FrictionFunction:
 
 
 @lru_cache(maxsize=None)
-def friction_function(model: Model, precision: Precision):
+def friction_function(model: Model, precision: Precision, batch_size: int = None):
     """The :class:`FrictionFunction` of a rolling model, or None without rolling contact.
 
     Compiled apart from :func:`compile_model` and only when asked for: a run that never reads
-    its required friction pays nothing for it.
+    its required friction pays nothing for it.  ``batch_size``: heyoka's (None: its default);
+    1 gives the scalar build that :class:`verify.engine.batch.ScalarTwin` pairs with the default.
     """
     normal = contact_event_function(model)
     if model.horizontal_acceleration is None or normal is None:
@@ -235,6 +236,7 @@ def friction_function(model: Model, precision: Precision):
     n = to_heyoka(normal, mapping)
     fx, fy = (to_heyoka(a / g, mapping) for a in model.horizontal_acceleration)
     mu = hy.sqrt(fx * fx + fy * fy) / n
-    cf = hy.cfunc([n, mu], list(variables), **precision.integrator_kwargs())
+    size = {} if batch_size is None else {"batch_size": batch_size}
+    cf = hy.cfunc([n, mu], list(variables), **precision.integrator_kwargs(), **size)
     exprs = [normal, *model.horizontal_acceleration, *model.accelerations]
     return FrictionFunction(cf, _n_pars(model, exprs))

@@ -65,19 +65,24 @@ import sympy as sp
 from models import get_model
 from models.common import PAPER_G
 from models.ring_dissipation import annulus_inertia
-from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta
+from models.symbols import ACCELERATIONS, STATE, STATE_NAMES, phidot, psidot, theta
 
 from ..circling import circling, theta_maxima
 from ..engine import batch, validation
 from ..engine.batch import Freeze as _Freeze  # noqa: F401  (patched by a negative control of the guard)
-from ..engine.compile import contact_event, symbol_map, to_heyoka
+from ..engine.compile import FRICTION, contact_event, friction_function, slip_event_function, symbol_map, to_heyoka
+from ..engine.failures import SLIP_SLACK_EPS
 from ..engine.single import COLLAPSE_FACTOR
 from ..engine.lanes import simd_width
 from ..precision import parse_precision
+from .spec import FRICTION as FRICTION_AXIS
 from .spec import SENSE_KEYS, InvalidPoint, SweepSpec
 
 #: Per-lane parameters after the model's: the last is [stop] theta_below, or without a [stop] the domain's upper end
 EXTRA = ("alive", "reason", "t_stop", "theta_stop or theta_max")
+#: With a friction coefficient, two more: theta where an event froze the lane (a record, read by no expression:
+#: it sits below the coefficient, which the event ``slips`` reads), then the coefficient
+FRICTION_EXTRA = ("theta_at_stop", "friction")
 WINDOWS = 20  # a run without nutation is read over 20 equal windows
 NUTATIONS_PER_WINDOW = 12  # otherwise over windows of 12 nutations (see orbit_windows)
 NUTATION_FLOOR = 1e-9  # rad: a theta spread below this is no nutation
@@ -100,11 +105,15 @@ class System:
     template: object  # taylor_adaptive_batch
     diagnostics: batch.ScalarTwin  # (omega_z, the energy's additive terms...) of the state
     normal_force: object  # batch.ScalarTwin of N/(Mg), or None (no contact)
+    theta_at_stop: int = None  # the parameter holding theta at the event that froze the lane (with a coefficient)
+    friction: int = None  # the parameter holding the friction coefficient (with one)
 
 
 @lru_cache(maxsize=None)
-def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False) -> System:
-    """The batch system of a model; the ``theta_stop`` event only with ``stop`` (a spec's [stop])."""
+def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False, friction: bool = False) -> System:
+    """The batch system of a model; the ``theta_stop`` event only with ``stop`` (a spec's [stop]), the
+    ``slips`` event only with ``friction`` (a spec's coefficient), each where the spec asks for it: an
+    event costs on every step."""
     model = get_model(model_name)
     variables = list(hy.make_vars(*STATE_NAMES))
     mapping = dict(zip(STATE, variables))
@@ -136,26 +145,63 @@ def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False
                       hy.event_direction.negative))
         normal = batch.ScalarTwin(validation.normal_force_function(model_name), hy.cfunc(
             [to_heyoka(model.normal_force, symbol_map(model, variables[:8]))], variables[:8], batch_size=1))
+    record = ()
+    if friction:
+        # the single engine's event function (verify.engine.compile.slip_event_function), on the same
+        # unscaled accelerations as contact_lost; last, so the other events keep their codes
+        at_stop, coefficient = n + len(EXTRA), n + len(EXTRA) + 1
+        slip_map = {**mapping, FRICTION: hy.par[coefficient],
+                    **dict(zip(ACCELERATIONS, [unscaled[i] for i in (THD, PHD, PSD)]))}
+        exprs.append(("slips", to_heyoka(slip_event_function(model), slip_map), hy.event_direction.positive))
+        record = ((TH, at_stop),)
     safe = 0.5 * (lo + hi)
     # a frozen lane is parked mid-domain with phidot = 1, not 0: |omega_perp| terms (sqrt) have no
     # Taylor series at 0
     park = ((TH, safe), (THD, 0.0), (PSD, 0.0), (PHD, 1.0))
     state = np.zeros(len(variables))
     state[TH] = safe
-    n_pars = n + len(EXTRA)
+    n_pars = n + len(EXTRA) + (len(FRICTION_EXTRA) if friction else 0)
     template = batch.batch_system(sys_, exprs, lanes, n_pars, batch_size, cooldown, state,
-                                  [float(sp.N(p.default)) for p in model.parameters], park=park)
+                                  [float(sp.N(p.default)) for p in model.parameters], park=park, record=record)
     omega_z = phidot + psidot * sp.cos(theta)
     fmap = dict(zip(STATE, variables[:8]))
     fmap.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
     terms = sp.Add.make_args(sp.expand(model.energy))  # the drift is judged against the sum of their magnitudes
     diag = batch.ScalarTwin.of([to_heyoka(omega_z, fmap)] + [to_heyoka(t, fmap) for t in terms], variables[:8])
-    return System(model_name, tuple(e[0] for e in exprs), n, len(variables), lanes, n_pars, template, diag, normal)
+    return System(model_name, tuple(e[0] for e in exprs), n, len(variables), lanes, n_pars, template, diag, normal,
+                  n + len(EXTRA) if friction else None, n + len(EXTRA) + 1 if friction else None)
+
+
+@lru_cache(maxsize=None)
+def friction_twin(model_name: str) -> batch.ScalarTwin:
+    """(N/(Mg), mu_req = |F_h|/N) of a rolling model as a :class:`verify.engine.batch.ScalarTwin` (the
+    cfunc ``solve`` reads ``friction_required`` with, and its scalar build), in double."""
+    model, dbl = get_model(model_name), parse_precision("double")
+    return batch.ScalarTwin(friction_function(model, dbl).function, friction_function(model, dbl, 1).function)
+
 
 
 # --- inputs of a chunk ---------------------------------------------------------------------------
 
-_PARAMETER_AXES_EXCLUDE = set(STATE_NAMES) | {"tilt"}
+_PARAMETER_AXES_EXCLUDE = set(STATE_NAMES) | {"tilt", FRICTION_AXIS}
+
+
+def friction_column(spec: SweepSpec, indices):
+    """The friction coefficient of each of the points ``indices`` (fixed or the axis), or None without one."""
+    idx = np.asarray(indices, dtype=np.int64)
+    if spec.friction is not None:
+        return np.full(len(idx), spec.friction)
+    if not spec.slips:
+        return None
+    return spec.columns(idx)[FRICTION_AXIS]
+
+
+def friction_needed(model_name: str, states, pars) -> np.ndarray:
+    """mu_req = |F_h|/N at each column of ``states`` (8, n) with per-column ``pars``; NaN where N <= 0."""
+    fn = friction_function(get_model(model_name), parse_precision("double"))
+    kwargs = {"pars": np.ascontiguousarray(pars[: fn.n_pars], dtype=float)} if fn.n_pars else {}
+    normal, need = fn.function(np.ascontiguousarray(states[:8], dtype=float), **kwargs)
+    return np.where(normal > 0, need, np.nan)
 
 
 def lane_inputs(spec: SweepSpec, indices) -> tuple:
@@ -283,8 +329,18 @@ def _problems(spec: SweepSpec, idx, states, pars, refs, problems) -> list:
     if len(cols):
         sub, psub = states[:, cols], pars[:, cols]
         normal = validation.normal_force_columns(spec.model, sub, psub)
-        for j, reason, message in validation.start_problems(model, sub, normal):
+        found = validation.start_problems(model, sub, normal)
+        for j, reason, message in found:
             problems.append((int(cols[j]), reason, message))
+        mu = friction_column(spec, idx)
+        if mu is not None:  # as solve refuses a start that already needs the coefficient (validation._slip_problem)
+            need = friction_needed(spec.model, sub, psub)
+            bad = {j for j, _, _ in found}
+            for j in np.flatnonzero(~(need < mu[cols])):
+                if int(j) not in bad:
+                    problems.append((int(cols[j]), "slips", f"the start needs the friction coefficient mu_req = "
+                                     f"|F_h|/N = {need[j]:.9g} >= friction = {mu[cols[j]]!r}: it slips at t = 0 and "
+                                     "cannot roll"))
         if spec.theta_stop is not None:
             below = np.flatnonzero(~(sub[TH] > spec.theta_stop))
             for j in below:
@@ -349,7 +405,7 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     if not indices:
         raise ValueError(f"chunk {chunk} is outside the sweep's {spec.n_chunks} chunks")
     bs = batch_size or simd_width()
-    sysm = system(spec.model, bs, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None)
+    sysm = system(spec.model, bs, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None, spec.slips)
     idx = np.asarray(indices, dtype=np.int64)
     inputs = _inputs(spec, idx)
     problems = _problems(spec, idx, *inputs)  # validated before the store was made; a worker checks again
@@ -366,6 +422,9 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     lane_pars[sysm.lanes.t_stop] = np.nan
     stop = spec.theta_stop
     lane_pars[m + 3] = stop if stop is not None else float(get_model(spec.model).domain.theta_max)
+    if spec.slips:
+        lane_pars[sysm.theta_at_stop] = np.nan
+        lane_pars[sysm.friction] = friction_column(spec, idx)[pad]
     grid = np.linspace(0.0, spec.t_end, spec.samples)
     options = {"max_delta_t": batch.step_cap([fastest_rate(spec)]), "max_steps": step_budget(spec)}
 
@@ -421,12 +480,14 @@ def _segments(samples, lengths) -> np.ndarray:
     return lanes[np.arange(samples.shape[0])[None, :] < np.asarray(lengths)[:, None]]
 
 
-def _guard(spec: SweepSpec, sysm: System, grid, samples, model_pars, stopped, t_stop) -> list:
+def _guard(spec: SweepSpec, sysm: System, grid, samples, model_pars, stopped, t_stop, friction=None) -> list:
     """Per lane, (outcome, time) of the first sample that should not exist, or None (module docstring).
 
     Every sample before the lane's stop must be finite, inside the domain, above ``[stop]
-    theta_below`` and at N > 0; at a sample on the stop time itself the stopping event's own
-    function is ~0, so the samples checked are those strictly before it.
+    theta_below``, at N > 0 and, with a coefficient (``friction``, per lane), need no more than it
+    (within :data:`verify.engine.failures.SLIP_SLACK_EPS`, as ``solve``'s guard); at a sample on
+    the stop time itself the stopping event's own function is ~0, so the samples checked are those
+    strictly before it.
     """
     n_lanes = samples.shape[2]
     checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), len(grid))
@@ -452,6 +513,15 @@ def _guard(spec: SweepSpec, sysm: System, grid, samples, model_pars, stopped, t_
         positive = np.ones((len(lanes), len(grid)), bool)
         positive[np.arange(len(grid))[None, :] < lengths[:, None]] = normal > 0
         ok[:, lanes] &= positive.T
+        if friction is not None:
+            need = batch.per_run(friction_twin(spec.model), points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
+                                 lengths)[1]
+            mu = np.repeat(friction[lanes], lengths)
+            within = np.ones((len(lanes), len(grid)), bool)
+            with np.errstate(invalid="ignore"):  # NaN where N <= 0, refused above
+                within[np.arange(len(grid))[None, :] < lengths[:, None]] = ~(
+                    need > mu + SLIP_SLACK_EPS * np.finfo(float).eps * np.maximum(1.0, mu))
+            ok[:, lanes] &= within.T
     ok |= ~inside
     for k in np.flatnonzero(finite_lanes & ~ok.all(axis=0)):
         out[k] = ("failed:event_detection", float(grid[np.argmin(ok[:, k])]))
@@ -464,7 +534,8 @@ def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, m
     stopped = reason != 0
     t_stop = final_pars[sysm.lanes.t_stop]
     kept = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="right")), len(grid))
-    guarded = _guard(spec, sysm, grid, samples, model_pars, stopped, t_stop)
+    friction = final_pars[sysm.friction] if sysm.friction is not None else None
+    guarded = _guard(spec, sysm, grid, samples, model_pars, stopped, t_stop, friction)
     rows = [None] * len(indices)
     for k, failure in enumerate(guarded):
         if failure is not None:
@@ -489,6 +560,12 @@ def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, m
          "max_theta_deviation": np.maximum.reduceat(np.abs(th - np.repeat(refs[lanes], lengths)), starts)}
     for i, name in enumerate(STATE_NAMES):
         q[f"final_{name}"] = y[ends, i]
+    if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself is
+        # between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
+        need = batch.per_run(friction_twin(spec.model), np.ascontiguousarray(y[:, :8].T),
+                             np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
+        need = np.where(need[0] > 0, need[1], np.nan)
+        q["max_friction_required_on_grid"] = np.fmax.reduceat(need, starts)
     wanted = set(spec.record) & set(SENSE_KEYS)  # only where asked: the windows cost a filter each
     for j, k in enumerate(lanes):
         index = int(indices[k])
@@ -498,6 +575,10 @@ def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, m
                "outcome": "ok" if not stopped[k] else sysm.events[reason[k] - 1], "t_stop": stop,
                "energy_drift_vs_terms": float(drift[j])}
         values = {name: column[j] for name, column in q.items()}
+        if friction is not None:
+            slipped = row["outcome"] == "slips"
+            values.update(slipped=float(slipped), t_slip=stop if slipped else math.nan,
+                          theta_at_slip=final_pars[sysm.theta_at_stop, k] if slipped else math.nan)
         if "tilt" in point:
             values["growth"] = values["max_theta_deviation"] / point["tilt"]
         if wanted:

@@ -89,10 +89,19 @@ SENSE_KEYS = ("orbit_start", "orbit_end", "orbit_last", "t_orbit_start", "t_orbi
               "retrograde_end", "t_retrograde", "windows", "windows_undecided", "strobe_last", "mean_last",
               "points_per_nutation", "node_turn_start", "node_turn_end", "node_retrograde_turn", "path_start",
               "path_end", "path_reversal", "roll_start", "roll_end", "roll_reversal", "t_roll_reversal")
+#: The friction coefficient of a sweep: ``[params] friction`` or ``[[axis]] name = "friction"`` (a model that rolls).
+FRICTION = "friction"
+#: What a run records about its friction (verify.sweep.engine documents each); the first three need a coefficient.
+FRICTION_KEYS = ("slipped", "t_slip", "theta_at_slip", "max_friction_required_on_grid")
 #: Quantities a run can record beyond outcome, t_stop and energy_drift_vs_terms (see verify.sweep.engine).
 QUANTITIES = ("max_theta", "min_theta", "final_theta", "max_theta_deviation", "growth") + SENSE_KEYS \
-    + tuple(f"final_{n}" for n in STATE_NAMES)
+    + tuple(f"final_{n}" for n in STATE_NAMES) + FRICTION_KEYS
 ALWAYS = ("t_stop", "energy_drift_vs_terms")
+#: Quantities that are 1 (yes), 0 (no) or NaN (not read): drawn as categories, never on a colour bar.
+YES_NO = ("slipped", "orbit_reversal", "retrograde_turn", "retrograde_by_last_read", "retrograde_end",
+          "node_retrograde_turn", "path_reversal", "roll_reversal")
+#: The one categorical column: how each run ended (drawn as one category per outcome).
+OUTCOME = "outcome"
 GEOMETRIES = ("annulus",)
 #: The axis that sets the rate of each steady motion (sleeping: psidot is the spin, phidot = 0).
 RATE_AXIS = {"diameter-spin": "phidot", "straight-line": "psidot", "precession": "phidot", "sleeping": "psidot"}
@@ -205,6 +214,12 @@ class SweepSpec:
     geometry: Optional[str]
     plot: dict
     text: str = field(repr=False)
+    friction: Optional[float] = None  # [params] friction: the fixed coefficient (an axis is in ``axes``)
+
+    @property
+    def slips(self) -> bool:
+        """Whether the runs have a friction coefficient, fixed or an axis (the terminal event ``slips``)."""
+        return self.friction is not None or any(a.name == FRICTION for a in self.axes)
 
     @property
     def sha256(self) -> str:
@@ -281,14 +296,23 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     settable = set(model.parameter_names)
     if geometry == "annulus":
         settable = (settable - {"I1", "I3"}) | {"w"}
+    rolls = model.horizontal_acceleration is not None and model.normal_force is not None  # as slip_event_function
+    if rolls:
+        settable |= {FRICTION}
 
     params = {}
     for key, value in _table(data, "params", where).items():
+        if key == FRICTION and not rolls:
+            raise SpecError(f"{where}: [params] friction: {model_name!r} has no rolling contact, so no friction to "
+                            "run out of; allowed: friction with a model that rolls (python -m verify models)")
         if key not in settable:
             raise SpecError(f"{where}: [params] {key} is not a parameter of {model_name!r}; allowed: "
                             f"{', '.join(sorted(settable))}")
         params[key] = _number(value, f"[params] {key}", where)
+        if key == FRICTION:
+            _positive(value, "[params] friction (a coefficient)", where)
         _in_range(model, key, params[key], value, f"[params] {key} = {value!r}", where)
+    friction = params.pop(FRICTION, None)
 
     start_table = dict(_table(data, "start", where))
     steady = start_table.pop("steady", None)
@@ -316,7 +340,7 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     names = [a.name for a in axes]
     if len(set(names)) != len(names):
         raise SpecError(f"{where}: an axis is given twice: {names}")
-    clash = set(names) & (set(params) | set(start))
+    clash = set(names) & (set(params) | set(start) | ({FRICTION} if friction is not None else set()))
     if clash:
         raise SpecError(f"{where}: {sorted(clash)[0]} is both an axis and a fixed value")
     if geometry == "annulus":
@@ -337,6 +361,14 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
             raise SpecError(f"{where}: [record] quantity {q!r} is unknown; allowed: {', '.join(QUANTITIES)}")
     if "growth" in record and "tilt" not in names:
         raise SpecError(f"{where}: [record] growth is max_theta_deviation / tilt: it needs an axis named 'tilt'")
+    slips = friction is not None or FRICTION in names
+    for q in FRICTION_KEYS:
+        if q in record and not rolls:
+            raise SpecError(f"{where}: [record] {q}: {model_name!r} has no rolling contact; allowed with a model that "
+                            "rolls")
+        if q in record and q != "max_friction_required_on_grid" and not slips:
+            raise SpecError(f"{where}: [record] {q} needs a friction coefficient: [params] friction = MU or an "
+                            "[[axis]] named 'friction'")
 
     stop = _table(data, "stop", where)
     _only(stop, {"theta_below"}, f"{where} [stop]")
@@ -349,15 +381,25 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     for key in ("x", "y", "panels"):
         if key in plot and plot[key] not in names:
             raise SpecError(f"{where}: [plot] {key} = {plot[key]!r} is not an axis; allowed: {', '.join(names)}")
-    if "quantity" in plot and plot["quantity"] not in QUANTITIES + ALWAYS:
-        raise SpecError(f"{where}: [plot] quantity = {plot['quantity']!r}; allowed: recorded quantities")
+    if "quantity" in plot and plot["quantity"] not in QUANTITIES + ALWAYS + (OUTCOME,):
+        raise SpecError(f"{where}: [plot] quantity = {plot['quantity']!r}; allowed: recorded quantities or outcome")
+    shown = plot.get("quantity", record[0] if record else ALWAYS[0])
+    if shown in YES_NO + (OUTCOME,):
+        hidden = [n for n in names if n not in {plot.get("x", names[0]), plot.get("y", names[min(1, len(names) - 1)]),
+                                                plot.get("panels")}]
+        if hidden:
+            raise SpecError(f"{where}: [plot] quantity = {shown!r} is drawn as categories, one run a cell, and cannot "
+                            f"be averaged over the axis {hidden[0]!r}; allowed: that axis as [plot] x, y or panels")
     return SweepSpec(name, model_name, t_end, samples, chunk, store_path, params, start, steady, tuple(axes), record,
-                     theta_stop, geometry, plot, text)
+                     theta_stop, geometry, plot, text, friction)
 
 
 def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) -> Axis:
     name = ax.get("name")
     allowed = set(STATE_NAMES) | settable | {"tilt"}
+    if name == FRICTION and FRICTION not in settable:
+        raise SpecError(f"{where}: [[axis]] {i + 1} name = 'friction': {model_name!r} has no rolling contact, so no "
+                        "friction to run out of; allowed: friction with a model that rolls (python -m verify models)")
     if name not in allowed:
         raise SpecError(f"{where}: [[axis]] {i + 1} name = {name!r}; allowed: state variables "
                         f"({', '.join(STATE_NAMES)}), parameters of {model_name!r} ({', '.join(sorted(settable))}) "
@@ -370,6 +412,9 @@ def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) 
         raise SpecError(f"{where}: [[axis]] {name} scale = {scale!r}; allowed: linear, log")
     if scale == "log" and not (lo > 0 and hi > 0):
         raise SpecError(f"{where}: [[axis]] {name}: a log axis needs positive ends; got from = {lo}, to = {hi}")
+    if name == FRICTION and not (lo > 0 and hi > 0):
+        raise SpecError(f"{where}: [[axis]] friction: a friction coefficient must be positive; got from = {lo}, "
+                        f"to = {hi}")
     model = get_model(model_name)
     for end, raw in (("from", ax.get("from")), ("to", ax.get("to"))):  # monotone axis: its ends bound it
         _in_range(model, name, lo if end == "from" else hi, raw, f"[[axis]] {name} {end} = {raw!r}", where)
