@@ -385,8 +385,8 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
         raise SpecError(f"{where}: [plot] quantity = {plot['quantity']!r}; allowed: recorded quantities or outcome")
     shown = plot.get("quantity", record[0] if record else ALWAYS[0])
     if shown in YES_NO + (OUTCOME,):
-        hidden = [n for n in names if n not in {plot.get("x", names[0]), plot.get("y", names[min(1, len(names) - 1)]),
-                                                plot.get("panels")}]
+        drawn = {plot.get("x", names[0]), plot.get("y", names[min(1, len(names) - 1)]), plot.get("panels")}
+        hidden = [a.name for a in axes if a.name not in drawn and len(a.values) > 1]
         if hidden:
             raise SpecError(f"{where}: [plot] quantity = {shown!r} is drawn as categories, one run a cell, and cannot "
                             f"be averaged over the axis {hidden[0]!r}; allowed: that axis as [plot] x, y or panels")
