@@ -14,6 +14,16 @@ its stop time are discarded by the reductions.  The events: the model's domain e
 theta_below`` when the spec has one (only then is it compiled: an event costs on every step),
 and the loss of contact (N = 0) where the model has a contact.
 
+With a friction coefficient (``[params] friction`` or an axis) the system has one more event,
+``slips``, built from the single engine's own function (:func:`verify.engine.compile.slip_event_function`)
+on the same unscaled accelerations as ``contact_lost``, the coefficient in a per-lane parameter;
+the event's callback keeps theta at the event time in another before it parks the lane.  A run
+records ``slipped`` (1 when ``slips`` stopped it, else 0), ``t_slip`` and ``theta_at_slip`` (NaN
+when it did not slip); ``max_friction_required_on_grid`` is the largest mu_req = |F_h|/N on the
+output samples up to the run's stop (NaN samples at N <= 0 skipped; a run that slipped needed its
+coefficient at t_slip, between samples).  The guard then also fails a lane with a sample before its
+stop needing more than its coefficient (the slack of :data:`verify.engine.failures.SLIP_SLACK_EPS`).
+
 The reductions of a chunk are computed for all its lanes at once (numpy over the lanes' samples;
 the diagnostics by one compiled call per chunk, bit for bit as one call per run), and only the
 quantities asked for: the senses of the orbit only when one of them is recorded.

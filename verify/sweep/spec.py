@@ -46,6 +46,13 @@ Example (``verify/sweep/specs/disk-diameter-spin.toml`` ships with the package):
 ``h`` and the wall ``w`` (units of R) of an annular cylinder at every point
 (:func:`models.ring_dissipation.annulus_inertia`); ``w`` may then be an axis or a fixed value.
 
+A model that rolls may take a friction coefficient, ``[params] friction = MU`` or an axis
+``name = "friction"`` (positive ends): every run then also stops at the terminal event ``slips`` of
+``solve(..., friction=MU)`` and may record ``slipped``, ``t_slip``, ``theta_at_slip``;
+``max_friction_required_on_grid`` needs only a rolling model (:mod:`verify.sweep.engine`).  A
+yes/no quantity (:data:`YES_NO`) or ``outcome`` as ``[plot] quantity`` is drawn as categories,
+one run a cell, so every axis with more than one value must be ``x``, ``y`` or ``panels``.
+
 Every run records ``outcome`` (``ok``, the terminal event, or ``failed:<reason>`` -- see
 :mod:`verify.sweep.engine`), ``t_stop`` (the event's time, or t_end) and ``energy_drift_vs_terms``
 (max |E + W - E(0)| over the samples, relative to the largest sum of the magnitudes of the energy's
