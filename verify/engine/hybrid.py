@@ -256,13 +256,17 @@ def solve(
     if velocity is None:
         run.rolling(prec.zero(), y0)
     else:
-        vx, vy = (prec.number(v) for v in velocity)
-        s, alpha = _evaluate(c.launch_function, prec.array(list(y0) + [vx, vy]), par_vector)
+        s, alpha = launch_slip(c, y0, [prec.number(v) for v in velocity], par_vector)
         if s == 0:
             run.rolling(prec.zero(), y0)
         else:
             run.sliding(prec.zero(), prec.array(list(y0) + [s, alpha, prec.zero()]))
     return run.result()
+
+
+def launch_slip(c: _Compiled, y0, velocity, par_vector):
+    """(s, alpha) of a start with CM velocity ``velocity``: u = v_C + omega x r_P (the launch map)."""
+    return tuple(_evaluate(c.launch_function, c.precision.array(list(y0) + list(velocity)), par_vector))
 
 
 class _Run:
