@@ -103,7 +103,7 @@ TILTED = {"theta": "1.2", "phidot": "3", "psidot": "25"}  # a wobbling disk laun
 
 
 def _tilted(precision):
-    return hybrid.solve("disk+coulomb", "0.5", TILTED, friction="0.5", velocity=("3", "1"), precision=precision,
+    return hybrid.solve("disk+coulomb", "0.5", TILTED, friction="1", velocity=("3", "1"), precision=precision,
                         n_eval=51)
 
 
@@ -118,7 +118,7 @@ def test_energy_balance_through_a_stick(precision):
     quantity that falls by mu N s dt)."""
     sol = _tilted(precision)
     prec = parse_precision(precision)
-    assert [p.kind for p in sol.phases][:2] == ["sliding", "rolling"] and sol.phases[0].ended == "sticks"
+    assert [p.kind for p in sol.phases] == ["sliding", "rolling"] and sol.phases[0].ended == "sticks"
     assert sol.energy_plus_work_drift_in_eps <= 64
     allowance = 64 * prec.eps * sol.energy_scale
     e = np.array([float(prec.to_mpf(v)) for v in sol.energy])
@@ -140,7 +140,11 @@ def test_a_wrong_stick_map_fails_the_energy_balance(monkeypatch):
         return right(self, t, self.prec.array(list(self.y[before])))
 
     monkeypatch.setattr(hybrid._Run, "_after_stick", early)
-    assert _tilted("double").energy_plus_work_drift_in_eps > 1e6
+    try:
+        sol = _tilted("double")
+    except hybrid.UnsupportedTransition as err:  # the wrong state may also need more friction than mu
+        sol = err.trajectory
+    assert sol.energy_plus_work_drift_in_eps > 1e6
 
 
 # --- 1. mu = 0 is the smooth plane (sliding-disk) ------------------------------------------------
@@ -169,6 +173,9 @@ def test_no_friction_reproduces_the_sliding_disk():
     size, margin 4) plus 16 eps of the component (the final roundings)."""
     diff, own = _smooth_difference()
     scale = np.array([abs(float(v)) for v in solve("sliding-disk", "0.5", SMOOTH, n_eval=2).y[:, -1]]) + 1
+    # x, y: the sliding-disk keeps them exactly; here x' = s e(alpha) - (omega x r_P)_h is a cancellation of
+    # terms of the size of the rates (|r_P| = 1), so x, y are off by at most t_end times the rates' error
+    own[6:] = 0.5 * own[3:6].max()
     assert np.all(diff <= 8 * own + 16 * 2.0 ** -52 * scale)
 
 

@@ -132,6 +132,7 @@ class _Compiled:
     sliding_function: object  # cfunc: 11 states -> [E, N/(Mg), E's terms...]
     rolling_function: object  # cfunc: 8 states -> [E, N/(Mg), F_x/(Mg), F_y/(Mg), E's terms...]
     launch_function: object  # cfunc: 8 states + (vx, vy) -> [s, alpha]
+    rhs_function: object  # cfunc: 11 states -> their time derivatives
     n_pars: int
 
 
@@ -164,7 +165,8 @@ def compiled(name: str, precision: Precision) -> _Compiled:
     cm_x, cm_y = (to_heyoka(e.subs(coulomb.slip_speed, 0), mapping) for e in sliding.cm_velocity_xy)
     ux, uy = vx - cm_x, vy - cm_y  # u = v_C + omega x r_P, and omega x r_P = -(v_C at s = 0)
     launch_function = hy.cfunc([hy.sqrt(ux * ux + uy * uy), hy.atan2(uy, ux)], list(variables[:8]) + [vx, vy], **kw)
-    return _Compiled(precision, system, events, sliding_function, rolling_function, launch_function,
+    rhs_function = hy.cfunc([rhs for _, rhs in system], list(variables), **kw)
+    return _Compiled(precision, system, events, sliding_function, rolling_function, launch_function, rhs_function,
                      len(rolling.parameters) + 1)
 
 
@@ -264,6 +266,26 @@ def solve(
     return run.result()
 
 
+class _CollapseWatch:
+    """propagate_grid's callback: stop when a step falls below 16 eps max(|t|, cap).
+
+    Where a sliding phase ends the direction equation alpha' = (e_perp . du/dt) / s relaxes at a rate
+    ~ mu N / s, which grows without bound as s -> 0: heyoka's steps then shrink in proportion to the
+    time left to the stick (measured: by 0.6 a step) and never cross it.  Below 16 eps max(|t|, cap)
+    the time left is a few ulps of t, and :meth:`_Run._finish_stick` takes it in one step.
+    """
+
+    def __init__(self, prec: Precision, cap):
+        self.eps, self.cap = prec.eps, float(cap)
+        self.last = None
+
+    def __call__(self, ta) -> bool:
+        t = ta.time
+        stop = self.last is not None and abs(float(t - self.last)) < 16 * self.eps * max(abs(float(t)), self.cap)
+        self.last = t  # at the run's precision: a difference of doubles would vanish long before a quad step
+        return not stop
+
+
 def launch_slip(c: _Compiled, y0, velocity, par_vector):
     """(s, alpha) of a start with CM velocity ``velocity``: u = v_C + omega x r_P (the launch map)."""
     return tuple(_evaluate(c.launch_function, c.precision.array(list(y0) + list(velocity)), par_vector))
@@ -306,22 +328,28 @@ class _Run:
         self.phases.append(Phase("sliding", t0, None, "running"))
         grid = prec.array([t0] + self._grid_after(t0))
         cap = max_step(y0[:8], self.pars, prec)
+        collapse = _CollapseWatch(prec, cap)
         with heyoka_log.collect() as messages:
-            result = ta.propagate_grid(grid, max_delta_t=cap)
+            result = ta.propagate_grid(grid, max_delta_t=cap, callback=collapse)
         outcome, out = result[0], np.asarray(result[-1])
         times = list(grid[: len(out)])
         states = [np.array(r) for r in out]
-        code = int(outcome) if outcome not in (hy.taylor_outcome.time_limit, hy.taylor_outcome.step_limit) else None
-        if code is not None and code < 0:
-            ended = c.events[-code - 1][0]
+        if outcome == hy.taylor_outcome.time_limit:
+            ended = "ok"
+        elif outcome == hy.taylor_outcome.cb_stop:
+            ended = "sticks"
+            t_stick, y_stick = self._finish_stick(ta)
+            times.append(t_stick)
+            states.append(y_stick)
+        elif 0 <= -int(outcome) - 1 < len(c.events):  # terminal event i ends with outcome -i - 1
+            ended = c.events[-int(outcome) - 1][0]
             times.append(ta.time)
             states.append(np.array(ta.state))
-        elif outcome == hy.taylor_outcome.time_limit:
-            ended = "ok"
         else:
+            label = "failed:non_finite" if outcome == hy.taylor_outcome.err_nf_state else "failed:sliding"
             raise IntegrationError(f"sliding phase of {self.name} stopped at t = {ta.time}: heyoka outcome {outcome}"
-                                   + (f" ({'; '.join(messages)})" if messages else ""), "failed:sliding", ta.time,
-                                   list(ta.state), None)
+                                   + (f" ({'; '.join(messages)})" if messages else ""), label, ta.time,
+                                   list(ta.state), self.result())
         if messages:
             raise IntegrationError(f"sliding phase of {self.name}: heyoka warned: {'; '.join(messages)}",
                                    "failed:event_detection", ta.time, list(ta.state), None)
@@ -340,6 +368,24 @@ class _Run:
             return self._after_stick(t1, y8)
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", f"the sliding phase ended at {ended}"
+
+    def _finish_stick(self, ta):
+        """The last ulps before a stick whose steps collapsed (:class:`_CollapseWatch`): one Euler step.
+
+        There s falls at a finite rate s' < 0 and the remaining time is tau = -s / s', a few ulps of t;
+        the state moves by tau y' (error tau^2 |y''| / 2, far below eps: tau |y'| is itself about the
+        rounding of y).  alpha is dropped at the stick and the work gains mu N s tau.
+        """
+        prec, y = self.prec, np.array(ta.state)
+        rate = _evaluate(self.c.rhs_function, y, self.par_vector)
+        if not rate[_SLIP] < 0:
+            raise IntegrationError(f"sliding phase of {self.name}: the steps collapsed at t = {ta.time} with the slip "
+                                   f"speed {y[_SLIP]} not falling", "failed:step_size_collapse", ta.time, list(y),
+                                   self.result())
+        tau = -y[_SLIP] / rate[_SLIP]
+        y_stick = y + tau * rate
+        y_stick[_SLIP] = prec.zero()
+        return ta.time + tau, y_stick
 
     def _after_stick(self, t, y8):
         """Sliding -> rolling at s = 0: the eight components as they are, if rolling holds there."""
