@@ -52,7 +52,7 @@ from .symbols import (
     time_derivative, vertical_in_frame,
 )
 
-#: Names of the bodies that roll or slide (a rolling model plus this sliding phase).
+#: Names of the bodies that roll or slide (a rolling model plus this sliding phase): models.COULOMB_NAMES.
 NAMES = ("disk+coulomb", "ring+coulomb")
 #: The rolling model of each.
 ROLLING = {"disk+coulomb": "disk", "ring+coulomb": "ring"}
