@@ -192,9 +192,11 @@ def _evaluate(function, states: np.ndarray, pars: np.ndarray) -> np.ndarray:
 def _sliding_template(name: str, precision: Precision):
     c = compiled(name, precision)
     events = [hy.t_event(ex, direction=d, fp_type=precision.fp_type) for _, ex, d in c.events]
+    # compact mode at every precision: the ring's sliding rows are ~3500 operations, whose full JIT in
+    # double took 490 s (measured once, cold cache); compact mode costs ~1.6x per step (HEYOKA.md)
+    kw = {**precision.integrator_kwargs(), "compact_mode": True}
     return hy.taylor_adaptive(list(c.system), precision.array([0] * len(c.system)),
-                              pars=precision.array([0] * c.n_pars), tol=precision.zero(), t_events=events,
-                              **precision.integrator_kwargs())
+                              pars=precision.array([0] * c.n_pars), tol=precision.zero(), t_events=events, **kw)
 
 
 def solve(
