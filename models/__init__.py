@@ -38,6 +38,9 @@ def _dissipative():
 #: Models with an explicit dissipative term (derived equations only; energy + work is conserved).
 DISSIPATIVE_NAMES = ("disk+moffatt", "disk+contact-rate", "ring+air-drag", "ring+rolling-friction")
 ALL_NAMES = MODEL_NAMES + DISSIPATIVE_NAMES
+#: Bodies that roll or slide with Coulomb friction: a rolling model plus the sliding phase of
+#: :mod:`models.coulomb`, run by :mod:`verify.engine.hybrid` (not a single :class:`Model`).
+COULOMB_NAMES = ("disk+coulomb", "ring+coulomb")
 
 
 def sources(name: str) -> tuple:
@@ -64,4 +67,4 @@ def _check_name(name: str) -> None:
         raise ValueError(f"unknown model {name!r}; allowed: {', '.join(ALL_NAMES)}")
 
 
-__all__ = ["ALL_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES", "get_model", "sources"]
+__all__ = ["ALL_NAMES", "COULOMB_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES", "get_model", "sources"]

@@ -5,7 +5,8 @@ from __future__ import annotations
 import sys
 import time
 
-from models import ALL_NAMES, get_model, sources
+from models import ALL_NAMES, COULOMB_NAMES, get_model, sources
+from models.symbols import STATE_NAMES
 
 from ..engine.single import IntegrationError, solve
 from ..guard import Session
@@ -17,6 +18,8 @@ from .progress import _Progress
 
 def cmd_trajectory(args, session: Session) -> int:
     precision = _precision(args.precision)
+    if args.model in COULOMB_NAMES:
+        return _coulomb_trajectory(args, session, precision)
     if args.model not in ALL_NAMES:
         raise UsageError(f"unknown model {args.model!r}; allowed: {', '.join(ALL_NAMES)}")
     if args.equations not in sources(args.model):
@@ -49,6 +52,58 @@ def cmd_trajectory(args, session: Session) -> int:
     session.emit(_dumps(record) if args.format == "json" else _text(record))
     if failure is not None:
         raise RunFailed(failure)
+    return 0
+
+
+def _coulomb_trajectory(args, session: Session, precision) -> int:
+    """``trajectory disk+coulomb|ring+coulomb --friction MU [--velocity VX,VY]``: phases, switches, E + W."""
+    from ..engine import hybrid
+
+    if args.friction is None:
+        raise UsageError(f"{args.model} needs --friction MU (the Coulomb coefficient, >= 0)")
+    if args.equations != "derived" or args.tol is not None or args.high_accuracy:
+        raise UsageError(f"{args.model} takes the derived equations at the precision's epsilon only "
+                         "(no --equations paper, --tol, --high-accuracy)")
+    state, params = _numeric_pairs(args.state, "state"), _numeric_pairs(args.param, "param")
+    t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
+    n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)
+    velocity = None
+    if args.velocity is not None:
+        velocity = args.velocity.split(",")
+        if len(velocity) != 2:
+            raise UsageError(f"--velocity {_shown(args.velocity)}; allowed: two numbers VX,VY")
+    try:
+        sol = hybrid.solve(args.model, t_end, state, params, friction=args.friction, velocity=velocity,
+                           precision=precision, n_eval=n_eval)
+        failed = None
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    except IntegrationError as err:
+        if err.trajectory is None:
+            raise RunFailed(str(err)) from None
+        sol, failed = err.trajectory, err
+    p = sol.precision
+    record = {
+        "model": sol.model, "precision": p.name, "params": {k: p.to_json(v) for k, v in sol.params.items()},
+        "outcome": failed.outcome if failed is not None else sol.outcome, "message": str(failed or sol.message),
+        "phases": [{"kind": ph.kind, "t_start": p.to_json(ph.t_start), "t_end": p.to_json(ph.t_end), "ended": ph.ended}
+                   for ph in sol.phases if ph.t_end is not None],
+        "switch_times": [p.to_json(t) for t in sol.switch_times if t is not None],
+        "t": p.to_json(sol.t[-1]), "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
+        "energy_plus_work_drift_in_eps": sol.energy_plus_work_drift_in_eps,
+    }
+    if args.format == "json":
+        session.emit(_dumps(record))
+    else:
+        lines = [f"{record['model']} ({record['precision']}), mu = {record['params']['mu']}: {record['outcome']}"]
+        lines += [f"  {ph['kind']:<8} {ph['t_start']} -> {ph['t_end']}  ({ph['ended']})" for ph in record["phases"]]
+        lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
+        lines.append(f"  E + W drift: {record['energy_plus_work_drift_in_eps']:.3g} eps of E's term scale")
+        if failed is not None:
+            lines.append(f"  {record['message']}")
+        session.emit("\n".join(lines))
+    if failed is not None:
+        raise RunFailed(str(failed))
     return 0
 
 

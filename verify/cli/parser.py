@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from models import ALL_NAMES
+from models import ALL_NAMES, COULOMB_NAMES
 from models.symbols import STATE_NAMES
 
 from .arguments import MP_MIN_BITS, N_EVAL_MAX, UsageError
@@ -29,7 +29,7 @@ def parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
 
     t = sub.add_parser("trajectory", help="integrate one model from one state")
-    t.add_argument("model", help=f"one of: {', '.join(ALL_NAMES)}")
+    t.add_argument("model", help=f"one of: {', '.join(ALL_NAMES + COULOMB_NAMES)}")
     t.add_argument("--equations", default="derived", help="derived (default) or paper")
     t.add_argument("--param", action="append", metavar="NAME=VALUE", help="a parameter (repeatable)")
     t.add_argument("--state", action="append", metavar="NAME=VALUE",
@@ -41,6 +41,8 @@ def parser() -> argparse.ArgumentParser:
     t.add_argument("--n-eval", default="101", help=f"output points from 0 to t_end (default 101; 2 to {N_EVAL_MAX})")
     t.add_argument("--friction", default=None, metavar="MU",
                    help="a friction coefficient: stop at the event slips where the rolling motion needs more")
+    t.add_argument("--velocity", default=None, metavar="VX,VY",
+                   help="disk+coulomb, ring+coulomb: the centre of mass's horizontal velocity at t = 0 (default: rolling)")
     t.add_argument("--high-accuracy", action="store_true",
                    help="heyoka's compensated summation: energy error ~ t^0.5 over 1e6 steps (python -m verify bench)")
     t.add_argument("--format", choices=("json", "text"), default="text")

@@ -1,0 +1,167 @@
+"""A body of revolution that rolls or slides on the plane with Coulomb friction: the sliding phase.
+
+The rolling phase is the rolling model itself (``disk``, ``ring``: paper Eqs. 5-8, derived in
+:mod:`models.rolling`).  This module derives the sliding phase, Newton-Euler about C as there
+(per unit mass, lengths in units of R):
+
+    a_C = F - g Z,          F = N Z + F_h                      (paper Eq. 6)
+    I omega_dot + Omega x (I omega) = r_P x F                  (paper Eq. 5)
+    F_h = -mu N u / |u|,    u = v_C + omega x r_P              (Coulomb; u horizontal)
+
+with the height constraint z_C = -r_P . Z (the contact stays on the plane), so that
+N = g + z_C'' depends on thetaddot; N is eliminated by substitution, and the three rotational
+rows are linear in the accelerations and solved for them.  With no slip (u = 0) the
+constraint of paper Eq. 7 replaces the force law: that is the rolling model.
+
+The slip state
+--------------
+The centre of mass's horizontal velocity is no longer set by the angles and rates: the state
+gains two components.  We take the contact point's slip velocity in polar form, slip speed
+``s = |u| >= 0`` and slip direction ``alpha`` (inertial: u = s (cos alpha, sin alpha, 0)),
+not its Cartesian components nor the CM velocity, because
+
+* the force law is regular in it: F_h = -mu N (cos alpha, sin alpha), no u / |u|;
+* the end of a sliding phase (the contact sticks, s -> 0) is a simple zero of a state
+  component: Coulomb friction brings s to zero at a finite rate (ds/dt < 0 there), so
+  heyoka's event on ``s`` sees a sign change and locates it to the precision's epsilon.  In
+  Cartesian components |u| touches 0 and never changes sign;
+* s is what the dissipated power needs: dW/dt = mu N s >= 0.
+
+The price is the direction equation d(alpha)/dt = (e_perp . du/dt) / s, 0/0 where s = 0.
+Where a sliding phase ends (s -> 0 linearly) the solution is regular and the quotient has a
+finite limit; where one begins from rolling (s grows like t^2) heyoka cannot take a first step
+(see :mod:`verify.engine.hybrid`, which does not integrate that onset).
+
+Everything is written in the horizontal frame (e1, h), h = cos(theta) e2 - sin(theta) e3
+= Z x e1 (paper Fig. 1), with ``beta = alpha - phi`` the slip direction measured from the line
+of nodes, so no expression carries phi except through beta.  The state of a sliding phase is
+the eight of the rolling models, then ``slip_speed``, ``slip_direction`` and ``work`` (the
+quadrature W = int mu N s dt): E + W is conserved (dE/dt = F . u = F_h . u = -mu N s, as
+N Z . u = 0).  With mu = 0 the rows are those of the smooth plane (``sliding-disk``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import sympy as sp
+
+from .base import Parameter
+from .symbols import (
+    ACCELERATIONS, STATE, g, omega_body, omega_body_dot, omega_frame, phi, phidot, theta,
+    time_derivative, vertical_in_frame,
+)
+
+#: Names of the bodies that roll or slide (a rolling model plus this sliding phase): models.COULOMB_NAMES.
+NAMES = ("disk+coulomb", "ring+coulomb")
+#: The rolling model of each.
+ROLLING = {"disk+coulomb": "disk", "ring+coulomb": "ring"}
+
+slip_speed, slip_direction, work = sp.symbols("slip_speed slip_direction work", real=True)
+mu = sp.Symbol("mu", nonnegative=True)
+FRICTION = Parameter("mu", mu, sp.Integer(1), "Coulomb friction coefficient (sliding and static alike)", lower=0.0,
+                     lower_inclusive=True, upper=None)
+
+#: The state of a sliding phase: the rolling models' eight, then the slip and the work.
+SLIDING_STATE_NAMES = ("theta", "phi", "psi", "thetadot", "phidot", "psidot", "x", "y",
+                       "slip_speed", "slip_direction", "work")
+SLIDING_STATE = STATE + (slip_speed, slip_direction, work)
+
+
+@dataclass(frozen=True)
+class SlidingPhase:
+    """The sliding equations of one body (sympy, in :data:`SLIDING_STATE` and the rolling model's
+    parameters plus ``mu``, which comes last).
+
+    Attributes
+    ----------
+    rhs : tuple
+        d/dt of each of :data:`SLIDING_STATE`, in that order.
+    energy : sp.Expr
+        Kinetic + potential energy per m R^2 (the rolling model's, with the free CM velocity).
+    normal_force : sp.Expr
+        N / (M g) on shell.
+    slip_rate_along, slip_rate_across : sp.Expr
+        e . du/dt and e_perp . du/dt (e = (cos alpha, sin alpha)); d(alpha)/dt is the second over s.
+    rolling_slip_acceleration : tuple
+        du/dt in the (e1, h) frame with the accelerations left symbolic and F_h given as
+        ``(F1, F2)`` symbols (the response of the slip to a horizontal force; tests).
+    """
+
+    rhs: tuple
+    energy: sp.Expr
+    kinetic: sp.Expr
+    normal_force: sp.Expr
+    slip_rate_along: sp.Expr
+    slip_rate_across: sp.Expr
+    cm_velocity_xy: tuple
+
+
+def _simplify(expr):
+    return sp.factor_terms(sp.cancel(sp.together(expr)))
+
+
+@lru_cache(maxsize=None)
+def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> SlidingPhase:
+    """The sliding phase of a body of revolution with r_P = (0, r2(theta), r3(theta)) (paper Eqs. 5-7)."""
+    w, wdot, Om = omega_body(), omega_body_dot(), omega_frame()
+    Z = vertical_in_frame()
+    r = sp.Matrix([0, r2, r3])
+    inertia = sp.diag(I1, I1, I3)
+    height = sp.simplify(-r.dot(Z))
+    zdot = time_derivative(height)
+    zddot = time_derivative(zdot)  # linear in thetaddot
+
+    beta = slip_direction - phi
+    cb, sb = sp.cos(beta), sp.sin(beta)
+    # e(alpha) in 1-2-3 components: cos(beta) e1 + sin(beta) h, h = (0, cos theta, -sin theta)
+    e_slip = sp.Matrix([cb, sb * sp.cos(theta), -sb * sp.sin(theta)])
+    normal = g + zddot  # N / M
+    force = normal * Z - mu * normal * e_slip  # F / M
+    rows = (inertia * wdot + Om.cross(inertia * w) - r.cross(force)).applyfunc(sp.expand)
+    solution = sp.solve(list(rows), list(ACCELERATIONS), dict=True)
+    if len(solution) != 1:
+        raise RuntimeError("the sliding Newton-Euler rows did not give unique accelerations")
+    acc = tuple(_simplify(solution[0][q]) for q in ACCELERATIONS)
+    on_shell = dict(zip(ACCELERATIONS, acc))
+
+    # omega x r_P: its vertical part is -z_C' (the contact stays on the plane), its horizontal part
+    # in (e1, h) is (c1, c2); the CM's horizontal velocity is u - (c1, c2).
+    spin = w.cross(r)
+    vertical = sp.simplify(spin.dot(Z) + zdot)
+    if vertical != 0:
+        raise RuntimeError("the contact point's vertical velocity is not -z_C'; r_P is not a contact of the plane")
+    c1 = spin[0]
+    c2 = spin[1] * sp.cos(theta) - spin[2] * sp.sin(theta)
+    v1, v2 = slip_speed * cb - c1, slip_speed * sb - c2  # CM horizontal velocity along (e1, h)
+    # du/dt along (e1, h): a_C,h + d/dt(c1 e1 + c2 h), with de1/dt = phidot h, dh/dt = -phidot e1
+    d1 = -mu * normal * cb + time_derivative(c1) - phidot * c2
+    d2 = -mu * normal * sb + time_derivative(c2) + phidot * c1
+    d1, d2 = (sp.expand(d.subs(on_shell)) for d in (d1, d2))
+    along = _simplify(cb * d1 + sb * d2)
+    across = _simplify(-sb * d1 + cb * d2)
+
+    xdot = v1 * sp.cos(phi) - v2 * sp.sin(phi)
+    ydot = v1 * sp.sin(phi) + v2 * sp.cos(phi)
+    theta_, phi_, psi_, thetadot_, phidot_, psidot_ = STATE[:6]
+    normal_on_shell = _simplify(normal.subs(on_shell) / g)
+    rhs = (
+        thetadot_, phidot_, STATE[5], acc[0], acc[1], acc[2], xdot, ydot,
+        along, across / slip_speed, mu * g * normal_on_shell * slip_speed,
+    )
+    kinetic = sp.Rational(1, 2) * (w.dot(inertia * w) + v1 ** 2 + v2 ** 2 + zdot ** 2)
+    return SlidingPhase(rhs, kinetic + g * height, kinetic, normal_on_shell, along, across, (xdot, ydot))
+
+
+def body(name: str):
+    """(rolling model, sliding phase, parameters incl. ``mu`` last) of ``disk+coulomb`` or ``ring+coulomb``."""
+    from . import disk, get_model, ring
+
+    if name not in NAMES:
+        raise ValueError(f"unknown model {name!r}; allowed: {', '.join(NAMES)}")
+    rolling = get_model(ROLLING[name])
+    if name == "disk+coulomb":
+        sliding = derive_sliding(disk.k, 2 * disk.k, disk.R2, disk.R3)
+    else:
+        sliding = derive_sliding(ring.I1, ring.I3, ring.R2, ring.R3)
+    return rolling, sliding, rolling.parameters + (FRICTION,)
