@@ -11,7 +11,7 @@ import pytest
 import sympy as sp
 
 from models import get_model
-from models.symbols import g, phidot, psidot, theta, thetadot
+from models.symbols import STATE, g, phidot, psidot, theta, thetadot
 from verify.engine import hybrid
 from verify.engine.single import solve
 from verify.precision import parse_precision
@@ -232,11 +232,81 @@ def test_stationary_circular_rolling_keeps_rolling_above_its_friction_and_slips_
                          n_eval=5)
     assert [p.kind for p in above.phases] == ["rolling"] and above.outcome == "ok"
     assert abs(float(above["theta"][-1]) - float(sp.N(5 * sp.pi / 180))) <= 1e-25  # still steady
-    # below its mu_req the start cannot roll: the slip starts at t = 0, whose onset (s = 0) the driver
-    # does not integrate -- it says so, naming the time
-    with pytest.raises(hybrid.UnsupportedTransition) as err:
-        hybrid.solve("disk+coulomb", "0.2", state, params, friction=str(float(0.99 * mu_req)), precision="quad", n_eval=5)
-    assert float(err.value.t) == 0
+    # below its mu_req the start cannot roll: the slip starts at t = 0 from s = 0 (then sticks again)
+    below = hybrid.solve("disk+coulomb", "0.2", state, params, friction=str(float(0.99 * mu_req)), n_eval=5)
+    assert below.phases[0].kind == "sliding" and float(below.phases[0].t_start) == 0
+    assert float(below.slip_speed[0]) == 0 and float(below.phases[0].t_end) > 0
+    assert below.energy_plus_work_drift_in_eps <= 64  # the bound argued in test_energy_balance_through_a_stick
+
+
+# --- a slip that starts from s = 0 where rolling needs more than mu ----------------------------------
+
+def _below_circle(precision="double", velocity=None, t_end="0.2"):
+    """The steady circle with mu = 0.9 of its need: it slides from t = 0 (onset at s = 0), then sticks."""
+    state, params = _steady()
+    need = solve("disk", "0.2", state, params, precision="quad", n_eval=2).friction_required[0]
+    return hybrid.solve("disk+coulomb", t_end, state, params, friction=str(float(0.9 * float(need))),
+                        precision=precision, n_eval=5, velocity=velocity)
+
+
+def _nearby_launch(delta: str, turn: float, precision="double"):
+    """A launch whose contact already slips by ``delta`` (cm/s) in the onset's direction turned by ``turn``."""
+    state, params = _steady()
+    rolling = get_model("disk")
+    values = {q: sp.Float(state.get(str(q), "0"), 50) for q in STATE}  # the rolling start's no-slip velocity
+    vx, vy = (sp.N(e.subs(rolling.parameter("k").symbol, sp.Rational(1, 4)).subs(values), 50)
+              for e in rolling.velocity_xy)
+    onset = _below_circle(precision).slip_direction[0]
+    with mpmath.workdps(50):
+        a = mpmath.mpf(float(onset)) + turn
+        d = mpmath.mpf(delta)
+        velocity = (mpmath.nstr(mpmath.mpf(str(vx)) + d * mpmath.cos(a), 45),
+                    mpmath.nstr(mpmath.mpf(str(vy)) + d * mpmath.sin(a), 45))
+    return _below_circle(precision, velocity=velocity)
+
+
+def _final_gap(a, b) -> float:
+    """The largest relative difference of the angles and rates at the end of two runs."""
+    return max(abs(float(a.y[i, -1] - b.y[i, -1])) / abs(float(b.y[i, -1])) for i in (0, 1, 2, 4, 5))
+
+
+def test_a_slip_from_rest_of_the_contact_is_the_limit_of_launches_with_a_vanishing_slip():
+    """An independent route to the onset (its direction alpha0, rate lambda and Taylor start): runs
+    launched with a slip of delta in another direction (turned by 0.5 rad) converge to it linearly in
+    delta.  Measured: gap / delta = 0.010509 at delta = 1e-6 and 1e-7; any error of the onset that does
+    not vanish with delta shows as a gap / delta growing tenfold from 1e-6 to 1e-7."""
+    onset = _below_circle()
+    assert [p.kind for p in onset.phases] == ["sliding", "rolling"] and onset.phases[0].ended == "sticks"
+    assert onset.energy_plus_work_drift_in_eps <= 64
+    ratios = [_final_gap(_nearby_launch(d, 0.5), onset) / float(d) for d in ("1e-6", "1e-7")]
+    assert abs(ratios[1] / ratios[0] - 1) < 0.01, ratios
+    assert ratios[1] < 1.0  # a slip of delta moves the end by about delta / 100, not more
+
+
+def test_negative_control_an_onset_in_the_wrong_direction_is_not_that_limit(monkeypatch):
+    right = hybrid.onset_directions
+    monkeypatch.setattr(hybrid, "onset_directions", lambda c, y, p: [(a + 0.5, lam) for a, lam in right(c, y, p)])
+    wrong = _below_circle()
+    monkeypatch.setattr(hybrid, "onset_directions", right)
+    gap = _final_gap(_nearby_launch("1e-7", 0.5), wrong)
+    assert gap / 1e-7 > 1e3  # measured: 7.9e7
+    assert wrong.energy_plus_work_drift_in_eps > 64  # measured: 6e5 (the start is off its own path)
+
+
+def test_a_slip_from_rest_of_the_contact_agrees_across_precisions_to_its_conditioning():
+    """double against quad through the onset and the stick, within four times what one ulp of the
+    start moves the double run's end (the motion's own conditioning, measured: 40-150 eps; the onset
+    and stick add 15-70 eps)."""
+    double, quad = _below_circle("double"), _below_circle("quad")
+    state, params = _steady()
+    need = solve("disk", "0.2", state, params, precision="quad", n_eval=2).friction_required[0]
+    nudged = dict(state, phidot=str(float(state["phidot"]) * (1 + 2.0 ** -52)))
+    moved = hybrid.solve("disk+coulomb", "0.2", nudged, params, friction=str(float(0.9 * float(need))), n_eval=5)
+    conditioning = _final_gap(moved, double)
+    assert conditioning > 0
+    gap = max(abs(float(double.y[i, -1]) - float(quad.y[i, -1])) / abs(float(quad.y[i, -1])) for i in (0, 1, 2, 4, 5))
+    assert gap <= 4 * conditioning + 16 * 2.0 ** -52, (gap, conditioning)
+    assert abs(float(double.switch_times[0]) - float(quad.switch_times[0])) <= 64 * 2.0 ** -52 * float(quad.switch_times[0])
 
 
 def test_a_perturbed_circle_slips_when_its_required_friction_reaches_mu():

@@ -19,12 +19,16 @@ Switches and their maps:
   (at s = 0 the CM velocity of the sliding state *is* the no-slip velocity), the slip state is
   dropped, W is kept.  If the rolling equations there need mu_req > mu the slip would go on
   from s = 0 in the direction of -F_req: that is the onset below;
-* rolling -> sliding at ``slips``: the exact map is s = 0, alpha the direction of -F_req (with
-  |F_req| = mu N the only consistent choice, since the contact's response to a horizontal force
-  is invertible).  **Not integrated**: from s = 0 the direction equation
-  d(alpha)/dt = (e_perp . du/dt)/s is 0/0 (s grows like t^2), heyoka cannot take a first step,
-  and near the onset the direction dynamics is stiff (it relaxes at a rate ~ mu N / s).  A run
-  that reaches it raises :class:`UnsupportedTransition` naming the time, with the run up to there.
+* sliding from s = 0 where rolling needs mu_req > mu (a start, or a stick where rolling cannot
+  hold): the slip starts at a finite rate lambda in the one direction alpha0 along which it then
+  accelerates (:func:`onset_directions`); d(alpha)/dt = (e_perp . du/dt)/s is 0/0 there, a regular
+  singular point whose one regular solution is started by a second-order Taylor polynomial over
+  2^-ceil(bits/3) of the step cap (:meth:`_Run.onset`), then heyoka takes over;
+* rolling -> sliding at ``slips`` (mu_req reaches mu exactly): the exact map is s = 0, alpha the
+  direction of -F_req, but there lambda = 0, s grows like t^2 and the direction's pull-back is stiff
+  like 1/t^2 (its rate ~ mu N / s), which an explicit Taylor method pays for with ~ (that rate's
+  time scale) / (start) steps.  **Not integrated**: a run that reaches it raises
+  :class:`UnsupportedTransition` naming the time, with the run up to there.
 
 Error budget: each phase's Taylor integration at tolerance epsilon; each switch time located by
 heyoka's event root finding to a few epsilon of t; the maps are exact (no rounding but the
@@ -60,7 +64,7 @@ _SLIP, _DIRECTION, _WORK = 8, 9, 10
 
 
 class UnsupportedTransition(IntegrationError):
-    """The run reached a switch this driver does not integrate (the onset of slip from s = 0)."""
+    """The run reached a switch this driver does not integrate (slip onset from rolling at mu_req = mu)."""
 
 
 @dataclass(frozen=True)
@@ -133,6 +137,7 @@ class _Compiled:
     rolling_function: object  # cfunc: 8 states -> [E, N/(Mg), F_x/(Mg), F_y/(Mg), E's terms...]
     launch_function: object  # cfunc: 8 states + (vx, vy) -> [s, alpha]
     rhs_function: object  # cfunc: 11 states -> their time derivatives
+    slip_rates: object  # cfunc: 8 states + alpha -> [e . du/dt, e_perp . du/dt] (no s in either)
     n_pars: int
 
 
@@ -166,8 +171,10 @@ def compiled(name: str, precision: Precision) -> _Compiled:
     ux, uy = vx - cm_x, vy - cm_y  # u = v_C + omega x r_P, and omega x r_P = -(v_C at s = 0)
     launch_function = hy.cfunc([hy.sqrt(ux * ux + uy * uy), hy.atan2(uy, ux)], list(variables[:8]) + [vx, vy], **kw)
     rhs_function = hy.cfunc([rhs for _, rhs in system], list(variables), **kw)
+    slip_rates = hy.cfunc([to_heyoka(e, mapping) for e in (sliding.slip_rate_along, sliding.slip_rate_across)],
+                          list(variables[:8]) + [variables[_DIRECTION]], **kw)
     return _Compiled(precision, system, events, sliding_function, rolling_function, launch_function, rhs_function,
-                     len(rolling.parameters) + 1)
+                     slip_rates, len(rolling.parameters) + 1)
 
 
 def _terms(expr):
@@ -234,8 +241,9 @@ def solve(
         Bad input; :class:`~verify.engine.validation.InvalidStart` for a start outside the domain
         or with N <= 0.
     UnsupportedTransition
-        The run reached the onset of slip from s = 0 (from rolling, or at a stick where rolling
-        needs mu_req > mu); ``t`` is its time, ``trajectory`` the :class:`HybridSolution` up to it.
+        The run reached the onset of slip from rolling where mu_req = mu (the ``slips`` event), or a
+        slip from s = 0 whose direction is not unique; ``t`` is its time, ``trajectory`` the
+        :class:`HybridSolution` up to it.
     IntegrationError
         A sliding phase failed (non-finite state, event detection).
     """
@@ -273,19 +281,33 @@ class _CollapseWatch:
 
     Where a sliding phase ends the direction equation alpha' = (e_perp . du/dt) / s relaxes at a rate
     ~ mu N / s, which grows without bound as s -> 0: heyoka's steps then shrink in proportion to the
-    time left to the stick (measured: by 0.6 a step) and never cross it.  Below 16 eps max(|t|, cap)
-    the time left is a few ulps of t, and :meth:`_Run._finish_stick` takes it in one step.
+    time left to the stick (measured: by 0.6 to 0.85 a step) and never cross it.  Below 16 eps
+    max(|t|, cap) the time left is a few ulps of t, and :meth:`_Run._finish_stick` takes it in one
+    step.  The watch also keeps the last state it saw: the shrinking steps may end in a non-finite
+    state before they are that small (measured once: steps of 1e-16 s, 130 ulps of t before the stick,
+    then NaN), and :meth:`_Run.sliding` then finishes from there if the time left is below
+    :data:`FINISH_ULPS` ulps.
     """
 
     def __init__(self, prec: Precision, cap):
         self.eps, self.cap = prec.eps, float(cap)
         self.last = None
+        self.last_state = None
 
     def __call__(self, ta) -> bool:
         t = ta.time
         stop = self.last is not None and abs(float(t - self.last)) < 16 * self.eps * max(abs(float(t)), self.cap)
         self.last = t  # at the run's precision: a difference of doubles would vanish long before a quad step
+        self.last_state = np.array(ta.state)
         return not stop
+
+
+#: How close to a stick (in units of eps max(|t|, step cap)) a sliding phase that ended in a non-finite
+#: state may be finished by one Euler step from its last finite state.  Near a stick alpha converges to
+#: its limit only like (time left)^kappa, with kappa < 1 on the examples, so the step's error is of
+#: order (time left)^(1 + kappa), not (time left)^2: it is kept to ulps, not to sqrt(eps) (measured:
+#: a finish of 130 ulps leaves E + W within 1 eps).
+FINISH_ULPS = 2 ** 10
 
 
 def launch_slip(c: _Compiled, y0, velocity, par_vector):
@@ -319,15 +341,16 @@ class _Run:
         self.index += [k] * len(times)
 
     # --- sliding ---------------------------------------------------------------------------------
-    def sliding(self, t0, y0):
+    def sliding(self, t0, y0, onset=None):
+        """A sliding phase from (t0, y0); ``onset``: (time, state) where it began at s = 0 (:meth:`onset`), if so."""
         prec, c = self.prec, self.c
         ta = _copy(_sliding_template(self.name, prec))
         ta.time = t0
         ta.state[:] = y0
-        ta.state[_WORK] = self.work_so_far
         ta.pars[:] = self.par_vector
         ta.reset_cooldowns()
-        self.phases.append(Phase("sliding", t0, None, "running"))
+        begun = t0 if onset is None else onset[0]
+        self.phases.append(Phase("sliding", begun, None, "running"))
         grid = prec.array([t0] + self._grid_after(t0))
         cap = max_step(y0[:8], self.pars, prec)
         collapse = _CollapseWatch(prec, cap)
@@ -336,8 +359,16 @@ class _Run:
         outcome, out = result[0], np.asarray(result[-1])
         times = list(grid[: len(out)])
         states = [np.array(r) for r in out]
+        if onset is not None:  # the phase's first output is where it began, s = 0, not the Euler step's end
+            times[0], states[0] = onset[0], np.array(onset[1])
         if outcome == hy.taylor_outcome.time_limit:
             ended = "ok"
+        elif outcome == hy.taylor_outcome.err_nf_state and self._near_stick(collapse):
+            ended = "sticks"
+            ta.time, ta.state[:] = collapse.last, collapse.last_state
+            t_stick, y_stick = self._finish_stick(ta)
+            times.append(t_stick)
+            states.append(y_stick)
         elif outcome == hy.taylor_outcome.cb_stop:
             ended = "sticks"
             t_stick, y_stick = self._finish_stick(ta)
@@ -363,7 +394,7 @@ class _Run:
         self._record("sliding", times, states, values[0], _term_scale(values, 2), [s[_SLIP] for s in states],
                      [s[_DIRECTION] for s in states], [s[_WORK] for s in states])
         t1 = times[-1]
-        self.phases[-1] = Phase("sliding", t0, t1, ended)
+        self.phases[-1] = Phase("sliding", begun, t1, ended)
         self.work_so_far = states[-1][_WORK]
         if ended == "sticks":
             y8 = prec.array(list(states[-1][:8]))
@@ -371,15 +402,31 @@ class _Run:
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", f"the sliding phase ended at {ended}"
 
+    def _near_stick(self, watch) -> bool:
+        """Whether the last finite state the watch saw is within FINISH_ULPS of a stick, s falling."""
+        if watch.last_state is None:
+            return False
+        y = watch.last_state
+        if not all(np.isfinite(np.asarray(y, dtype=float))):
+            return False
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rate = _evaluate(self.c.rhs_function, y, self.par_vector)
+        if not rate[_SLIP] < 0:
+            return False
+        left = float(-y[_SLIP] / rate[_SLIP])
+        return left <= FINISH_ULPS * self.prec.eps * max(abs(float(watch.last)), watch.cap)
+
     def _finish_stick(self, ta):
         """The last ulps before a stick whose steps collapsed (:class:`_CollapseWatch`): one Euler step.
 
-        There s falls at a finite rate s' < 0 and the remaining time is tau = -s / s', a few ulps of t;
-        the state moves by tau y' (error tau^2 |y''| / 2, far below eps: tau |y'| is itself about the
-        rounding of y).  alpha is dropped at the stick and the work gains mu N s tau.
+        There s falls at a finite rate s' < 0 and the remaining time is tau = -s / s', a few ulps of t
+        (at most :data:`FINISH_ULPS`); the state moves by tau y' (error of order tau^(1 + kappa),
+        :data:`FINISH_ULPS`).  alpha is dropped at the stick and the work gains mu N s tau.
         """
         prec, y = self.prec, np.array(ta.state)
-        rate = _evaluate(self.c.rhs_function, y, self.par_vector)
+        with np.errstate(divide="ignore", invalid="ignore"):  # alpha' is 0/0 if s is 0 already; alpha is dropped
+            rate = _evaluate(self.c.rhs_function, y, self.par_vector)
+        rate[_DIRECTION] = prec.zero()
         if not rate[_SLIP] < 0:
             raise IntegrationError(f"sliding phase of {self.name}: the steps collapsed at t = {ta.time} with the slip "
                                    f"speed {y[_SLIP]} not falling", "failed:step_size_collapse", ta.time, list(y),
@@ -394,9 +441,45 @@ class _Run:
         normal, mu_req = (float(v) for v in _evaluate(friction_function(_rolling(self.name), self.prec).function, y8,
                                                        self.par_vector[:-1]))
         if not mu_req <= float(self.mu):
-            raise self._unsupported(t, f"the slip stops at t = {t} but rolling there needs mu_req = {mu_req:.6g} > "
-                                       f"mu = {float(self.mu):.6g}: the slip restarts from s = 0, not integrated")
+            return self.onset(t, y8, f"the slip stops at t = {t} but rolling there needs mu_req = {mu_req:.6g} > "
+                                     f"mu = {float(self.mu):.6g}")
         return self.rolling(t, y8)
+
+    # --- sliding from s = 0 where rolling needs more than mu -----------------------------------
+    def onset(self, t, y8, why):
+        """Sliding from s = 0 where rolling would need mu_req > mu: the slip starts at a finite rate.
+
+        With |F_req| > mu N the slip's acceleration at s = 0 is finite, du/dt = lambda e(alpha0) with
+        lambda > 0, for the one direction alpha0 in which the friction -mu N e(alpha0) leaves the
+        contact accelerating along e(alpha0) (:func:`onset_directions`: the root of B(alpha) = e_perp .
+        du/dt with e . du/dt > 0; unique, since the contact's response to a horizontal force is
+        positive definite).  There d(alpha)/dt = B/s is 0/0, a regular singular point: with
+        s = lambda t + O(t^2) (t from the onset), alpha = alpha0 + alpha1 t + O(t^2) with
+        alpha1 = B_t / (lambda - B_alpha) (B_t the rate of B along the motion at fixed alpha, B_alpha
+        < 0 its restoring slope), the one solution that stays regular; the others leave it like
+        t^(B_alpha / lambda) and die out.
+
+        heyoka cannot start at s = 0, so the phase starts at tau = 2^-ceil(bits/3) of the step cap
+        (:func:`onset_step`) from this second-order Taylor start: y(tau) = y + tau y' + tau^2 y''/2
+        for the eight and s (y'' by a second-order one-sided difference along the first-order path
+        over tau and 2 tau), alpha(tau) = alpha0 + alpha1 tau (B_alpha, B_t by central differences),
+        W(tau) by Simpson's rule on mu g N s along that start.  The truncation, tau^3 times the third derivative over 6, is
+        of order eps of the state; alpha's error, O(tau^2), is a displacement off the regular
+        solution, pulled back at the rate lambda / s and moving the state by far less.
+
+        Where mu_req = mu exactly (the ``slips`` event of a rolling phase) lambda = 0: s grows like
+        t^2, alpha's pull-back is stiff like 1/t^2, and that onset is not integrated (:meth:`rolling`).
+        """
+        prec, c = self.prec, self.c
+        roots = onset_directions(c, y8, self.par_vector)
+        if len(roots) != 1:
+            raise self._unsupported(t, f"{why}; the slip's direction there is not unique ({len(roots)} directions "
+                                       "with the slip accelerating along itself): not integrated")
+        alpha0, lam = roots[0]
+        y = prec.array(list(y8) + [prec.zero(), alpha0, self.work_so_far])
+        tau = onset_step(prec, y8, self.pars)
+        start = _second_order_start(c, y, lam, tau, self.par_vector)
+        return self.sliding(t + tau, start, onset=(t, y))
 
     # --- rolling ---------------------------------------------------------------------------------
     def rolling(self, t0, y8):
@@ -410,7 +493,8 @@ class _Run:
                                 t_eval=[prec.zero()] + [r for r in relative if r > 0], friction=self.mu)
         except InvalidStart as err:
             if err.reason == "slips":
-                raise self._unsupported(t0, f"rolling from t = {t0} needs more friction than mu: {err}") from None
+                self.phases.pop()
+                return self.onset(t0, y8, f"rolling from t = {t0} needs more friction than mu: {err}")
             raise
         self.rolling_runs.append(sol)
         states = [np.array(sol.y[:, j]) for j in range(sol.y.shape[1])]
@@ -455,6 +539,107 @@ class _Run:
             energy_scale=scale, energy_plus_work_drift_in_eps=drift, switch_times=switches,
             outcome=self.outcome, status=status, message=self.message, rolling_runs=tuple(self.rolling_runs),
         )
+
+
+def onset_directions(c: _Compiled, y8, par_vector, samples: int = 256) -> list:
+    """[(alpha0, lambda)]: the directions in which a slip from s = 0 accelerates along itself, du/dt = lambda e.
+
+    The roots in alpha of e_perp(alpha) . du/dt (the slip's acceleration with friction -mu N e(alpha),
+    ``models.coulomb``'s ``slip_rate_across``) with lambda = e . du/dt > 0: bracketed on ``samples``
+    directions, then bisected at the precision until the bracket stops shrinking.
+    """
+    prec = c.precision
+    two_pi = 2 * _pi(prec)
+    alphas = [two_pi * prec.number(i) / prec.number(samples) - two_pi / 2 for i in range(samples + 1)]
+
+    def rates(alpha):
+        return _evaluate(c.slip_rates, prec.array(list(y8) + [alpha]), par_vector)
+
+    values = [rates(a) for a in alphas]
+    found = []
+    for (a, fa), (b, fb) in zip(zip(alphas, values), zip(alphas[1:], values[1:])):
+        if (fa[1] > 0) == (fb[1] > 0) or not (fa[0] > 0 or fb[0] > 0):
+            continue
+        lo, hi, up = a, b, fa[1] < 0
+        while True:
+            mid = (lo + hi) / 2
+            if not lo < mid < hi:
+                break
+            if (rates(mid)[1] < 0) == up:
+                lo = mid
+            else:
+                hi = mid
+        along = rates(lo)[0]
+        if along > 0:
+            found.append((lo, along))
+    return found
+
+
+def onset_step(prec: Precision, y8, pars):
+    """How far the Taylor start of a slip from s = 0 reaches: 2^-ceil(bits/3) of the step cap (one radian
+    of the fastest rate), so that its truncation, tau^3 times the third derivative, is of order eps
+    (:meth:`_Run.onset`)."""
+    return prec.number(2) ** -((_bits(prec) + 2) // 3) * max_step(y8, pars, prec)
+
+
+def _second_order_start(c: _Compiled, y, lam, tau, par_vector):
+    """The state a time ``tau`` after a slip's onset ``y`` (s = 0, alpha0, W): see :meth:`_Run.onset`.
+
+    The eight, s and alpha from their second-order Taylor polynomials, and the work W by Simpson's rule
+    on the rate mu g N s along them (exact to O(tau^5) for them).
+    """
+    prec = c.precision
+    y8, alpha0 = y[:8], y[_DIRECTION]
+    with np.errstate(divide="ignore", invalid="ignore"):  # d(alpha)/dt is 0/0 at s = 0 and is not read
+        rate0 = _evaluate(c.rhs_function, y, par_vector)
+
+    def across(state8, alpha):
+        return _evaluate(c.slip_rates, prec.array(list(state8) + [alpha]), par_vector)[1]
+
+    h = tau
+    b_alpha = (across(y8, alpha0 + h) - across(y8, alpha0 - h)) / (2 * h)
+    b_t = (across(y8 + h * rate0[:8], alpha0) - across(y8 - h * rate0[:8], alpha0)) / (2 * h)
+    alpha1 = b_t / (lam - b_alpha)
+
+    def along_path(dt):  # the rates on the first-order path, for the second derivatives
+        p = y.copy()
+        p[:8] = y8 + dt * rate0[:8]
+        p[_SLIP], p[_DIRECTION] = lam * dt, alpha0 + alpha1 * dt
+        return _evaluate(c.rhs_function, p, par_vector)
+
+    r1, r2 = along_path(h), along_path(2 * h)
+    moving = list(range(8)) + [_SLIP]
+    second = {i: (-3 * rate0[i] + 4 * r1[i] - r2[i]) / (2 * h) for i in moving}
+
+    def at(dt, alpha2):
+        p = y.copy()
+        for i in moving:
+            p[i] = y[i] + dt * rate0[i] + dt * dt * second[i] / 2
+        p[_DIRECTION] = alpha0 + alpha1 * dt + alpha2 * dt * dt / 2
+        return p
+
+    def mismatch(alpha2):  # alpha's rate on the path at h against the path's own, alpha1 + alpha2 h
+        return _evaluate(c.rhs_function, at(h, alpha2), par_vector)[_DIRECTION] - (alpha1 + alpha2 * h)
+
+    # alpha2 puts the start on the regular solution to second order too: the rate is affine in alpha2
+    # to far below eps there (alpha2 h^2 / 2 is a displacement of order h^2), so one secant step solves it
+    m0, m1 = mismatch(prec.zero()), mismatch(prec.number(1))
+    alpha2 = -m0 / (m1 - m0)
+    start, middle = at(tau, alpha2), at(tau / 2, alpha2)
+    work_rate = [_evaluate(c.rhs_function, p, par_vector)[_WORK] for p in (middle, start)]
+    start[_WORK] = y[_WORK] + tau * (4 * work_rate[0] + work_rate[1]) / 6  # the rate is 0 at s = 0
+    return start
+
+
+def _pi(prec: Precision):
+    import mpmath
+
+    with mpmath.workprec(_bits(prec) + 16):
+        return prec.number(mpmath.nstr(mpmath.pi, int(_bits(prec) * 0.302) + 6))
+
+
+def _bits(prec: Precision) -> int:
+    return int(round(1 - np.log2(prec.eps)))
 
 
 def _dtype(prec: Precision):
