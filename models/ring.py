@@ -37,6 +37,7 @@ from .base import Domain, Parameter
 from .build import paper_variant, rolling_model
 from .common import AXIAL_BOUND, GRAVITY, inertia_parameters
 from .paper import eq50_rows
+from .ring_chaplygin import THETA_REF, chaplygin_closed_form
 
 _R, _H, _W = sp.Rational(366, 100), sp.Rational(159, 100), sp.Rational(1, 2)
 I3_DEFAULT = (1 + (1 - _W / _R) ** 2) / 2  # annulus about its axis
@@ -151,7 +152,7 @@ DOMAIN = Domain(sp.Integer(0), sp.pi / 2, "lies_flat", "rim_switch")
 def model(equations: str = "derived"):
     derived = rolling_model(
         "ring", "thick ring or coin rolling on one rim", PARAMETERS, I1, I3, R2, R3, DOMAIN,
-        unit="m R^2", theta_ref=sp.pi / 4,
+        unit="m R^2", theta_ref=THETA_REF, chaplygin_closed_form=chaplygin_closed_form,
     )
     from dataclasses import replace
 

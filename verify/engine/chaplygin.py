@@ -84,7 +84,8 @@ def chaplygin_integrals(model: Model, precision: Precision, params: dict, thetas
     move = np.ones(len(thetas), dtype=bool)
     if method == "auto" and model.chaplygin.closed_form is not None:
         lo, hi = _domain(model.domain, precision)
-        move = (thetas > lo) & (thetas < hi)
+        with np.errstate(invalid="ignore"):  # a NaN theta goes to the transport, which gives NaN
+            move = ((thetas > lo) & (thetas < hi)) | (thetas != thetas)
         c1, c2 = _transported(model, precision, params, thetas[move], w2[move], w3[move])
     else:
         c1, c2 = _transported(model, precision, params, thetas, w2, w3)
