@@ -326,3 +326,128 @@ def family_slip(model: str, family: str, params: dict) -> dict:
                      "theta_high": mpmath.nstr(points[-1][0], 10)},
             "max_mu": mpmath.nstr(points[i_max][1], 8), "theta_at_max": mpmath.nstr(points[i_max][0], 8),
             "roots": roots}
+
+
+# --- the figure runs and the reference cases -----------------------------------------------
+
+def run_friction(sol) -> dict:
+    """The largest mu_req of a trajectory on its output grid and when, and where it loses contact.
+
+    ``contact_lost_t``: the first output time with N <= 0 (the run's own ``contact_lost`` event
+    time where the run stopped there); mu_req is NaN from there on (meaningless without
+    contact), so its maximum is over the points with N > 0.  None without rolling contact.
+    """
+    mu = sol.friction_required
+    base = {"model": sol.model, "outcome": sol.outcome, "t_end": f"{float(sol.t[-1]):.6g}", "points": len(sol.t)}
+    if mu is None:
+        return {**base, "rolling": False}
+    mu = np.asarray(mu, float)
+    normal = np.asarray(sol.normal_force, float)
+    t = np.asarray(sol.t, float)
+    lost = np.nonzero(~(normal > 0))[0]
+    finite = np.isfinite(mu)
+    if len(lost):  # after the first loss of contact the rolling solution is not physical (Fig. 12 runs on)
+        finite[lost[0]:] = False
+    i = int(np.nanargmax(np.where(finite, mu, -np.inf))) if finite.any() else None
+    contact_t = None
+    if sol.outcome == "event:contact_lost":
+        contact_t = float(sol.t_events["contact_lost"]) if "contact_lost" in (sol.t_events or {}) else float(t[-1])
+    elif len(lost):
+        contact_t = float(t[lost[0]])
+    return {**base, "rolling": True, "mu_max": None if i is None else f"{mu[i]:.4g}",
+            "t_mu_max": None if i is None else f"{t[i]:.6g}", "band": band(mu[i]) if i is not None else "-",
+            "normal_min": f"{np.nanmin(normal):.4g}", "contact_lost_t": None if contact_t is None else f"{contact_t:.6g}",
+            "points_without_contact": int(len(lost))}
+
+
+@contextmanager
+def recorded_runs():
+    """The trajectories the figure runs of :mod:`verify.claims.simulations` make, recorded in order.
+
+    The claims own their runs (:func:`verify.claims.simulations.runs.run`); this wraps the
+    ``solve`` that function calls, for the duration, and empties the claims' run caches before
+    and after, so every figure run is made (and recorded) here, never taken from an earlier
+    evaluation in the same process.
+    """
+    from verify.claims.simulations import disk, hurricane, ring, runs
+
+    def clear():
+        for module in (runs, disk, ring, hurricane):
+            for obj in list(vars(module).values()):
+                if callable(getattr(obj, "cache_clear", None)):
+                    obj.cache_clear()
+
+    recorded = []
+    real = runs.solve
+
+    def recording(*args, **kwargs):
+        sol = real(*args, **kwargs)
+        recorded.append(sol)
+        return sol
+
+    clear()
+    runs.solve = recording
+    try:
+        yield recorded
+    finally:
+        runs.solve = real
+        clear()
+
+
+def _matches(data, sol) -> bool:
+    """Whether the figure's RunData was made from the trajectory ``sol`` (the same samples of t and theta)."""
+    t = np.asarray(sol.t, float)
+    return len(t) == len(data.t) and np.array_equal(t, np.asarray(data.t)) and np.array_equal(
+        np.asarray(sol["theta"], float), np.asarray(data.theta))
+
+
+def figure_claims(figure: int) -> list:
+    """The simulation claims of paper figure ``figure`` (their ids are fig-N or fig-N-...)."""
+    from verify.claims import simulations
+
+    return [c for c in simulations.claims() if c.id == f"fig-{figure}" or c.id.startswith(f"fig-{figure}-")]
+
+
+def figure_numbers() -> tuple:
+    """The paper figures the simulation claims draw."""
+    from verify.claims import simulations
+
+    return tuple(sorted({int(c.id.split("-")[1]) for c in simulations.claims()}))
+
+
+def figure_rows(figure: int) -> list:
+    """mu_req of every run the figure(s) of paper figure ``figure`` show, one row per run.
+
+    The figure's claims are evaluated with their runs recorded (:func:`recorded_runs`); each run
+    a figure shows is the recorded trajectory with its samples.  A run drawn from another's
+    samples (Fig. 12's point A is the CM run's) is marked ``same_run_as``.
+    """
+    with recorded_runs() as recorded:
+        figures = [fig for claim in figure_claims(figure) for fig in claim.evaluate().figures]
+    rows, seen = [], {}
+    for fig in figures:
+        for data in fig.runs:
+            match = [s for s in recorded if _matches(data, s)]
+            if not match:
+                raise RuntimeError(f"{fig.name}: the run {data.label!r} is none of the recorded trajectories")
+            sol = match[-1]
+            row = {"figure": fig.name, "title": fig.title, "run": data.label, **run_friction(sol)}
+            if id(sol) in seen:
+                row["same_run_as"] = seen[id(sol)]
+            seen.setdefault(id(sol), data.label)
+            rows.append(row)
+    return rows
+
+
+def reference_rows(names=None) -> list:
+    """mu_req along every reference case, run in double on REFERENCE_POINTS points."""
+    from verify.engine.single import solve
+    from verify.reference.cases import cases
+
+    rows = []
+    for c in cases():
+        if names is not None and c.name not in names:
+            continue
+        sol = solve(c.model, c.t_end, dict(c.state), dict(c.params), n_eval=REFERENCE_POINTS)
+        rows.append({"case": c.name, "source": c.source, "kind": c.kind, **run_friction(sol)})
+    return rows
