@@ -451,3 +451,114 @@ def reference_rows(names=None) -> list:
         sol = solve(c.model, c.t_end, dict(c.state), dict(c.params), n_eval=REFERENCE_POINTS)
         rows.append({"case": c.name, "source": c.source, "kind": c.kind, **run_friction(sol)})
     return rows
+
+
+# --- slip on the dissipative spin-down: the quasi-steady drift and the damped run ----------
+
+@lru_cache(maxsize=None)
+def _transported_row(law: str):
+    """Row 1 of the dissipative disk at thetadot = 0 with psidot = omega3 - phidot cos theta, as
+    an mpmath function of (theta, phidot, omega3, k, g, c): its root in phidot is the steady rate
+    at (theta, omega3) the transported drift follows (:mod:`verify.studies.dissipation.prediction`)."""
+    from models import disk
+    from models.dissipative import c as c_symbol, dissipative_disk
+    from models.symbols import g, phidot, psidot, theta, thetadot
+
+    w3 = sp.Symbol("omega3", real=True)
+    row = dissipative_disk(law).accelerations[0].subs({thetadot: 0, psidot: w3 - phidot * sp.cos(theta)})
+    return sp.lambdify([theta, phidot, w3, disk.k, g, c_symbol], sp.numer(sp.together(row)), "mpmath")
+
+
+def transported_point(law: str, th: float, pars: list) -> dict:
+    """The transported drift at ``th`` (from THETA0, omega3 = 0 there): omega3, the time, the
+    steady phidot at (theta, omega3), and mu_req by the closed form (N = M g, quasi-steady)."""
+    from verify.engine.single import through_grid
+
+    from .dissipation import THETA0
+    from .dissipation.prediction import _transport_system
+
+    run = through_grid(("dissipation transport", law), _transport_system(law), [0.0, 0.0, 0.0], pars,
+                       [float(THETA0), th])
+    if not run.reached:
+        raise RuntimeError(f"the transported drift stopped before theta = {th} ({run.outcome})")
+    th = float(th)
+    omega3, t, _ = (float(v) for v in run.rows[-1])
+    k, g, c = (mpmath.mpf(float(v)) for v in pars)
+    row = _transported_row(law)
+    with mpmath.workdps(30):
+        x = mpmath.mpf(th)
+        rate = mpmath.findroot(lambda p: row(x, p, omega3, k, g, c), mpmath.sqrt(g / (k * mpmath.sin(x))))
+        mu = closed_form("disk", x, rate, omega3 - rate * mpmath.cos(x), {"g": g})
+    return {"theta": th, "omega3": omega3, "t": t, "phidot": float(rate), "mu": float(mu)}
+
+
+def transported_slip(law: str) -> dict:
+    """Route 1 of the spin-down's slip: where mu_req reaches each of MU_LEVELS along the drift the
+    dissipation study predicts (steady motions with omega3 transported from THETA0; its theta is
+    the same for both laws, only its clock depends on the couple).
+
+    The levels of the study's grid bracket each crossing; Brent's method refines it to a relative
+    1e-13 in theta (the drift is integrated in double).
+    """
+    from scipy.optimize import brentq
+
+    from .dissipation import STUDY_C, THETA0, THETA_STOP, level_grid, predict
+
+    pred = predict(law, STUDY_C[law])
+    pars = [float(pred.params[n]) for n in ("k", "g", "c")]
+    levels = [float(THETA0)] + [float(v) for v in level_grid(float(THETA0), float(THETA_STOP))]
+    points = [transported_point(law, th, pars) if th < float(THETA0) else
+              {"theta": th, "mu": 0.0, "t": 0.0} for th in levels]
+    out = []
+    for level in MU_LEVELS:
+        target = float(level)
+        bracket = next(((a, b) for a, b in zip(points, points[1:]) if a["mu"] < target <= b["mu"]), None)
+        if bracket is None:
+            out.append({"mu": level, "theta": None})
+            continue
+        th = brentq(lambda x: transported_point(law, x, pars)["mu"] - target, bracket[1]["theta"], bracket[0]["theta"],
+                    xtol=1e-300, rtol=1e-13)
+        p = transported_point(law, th, pars)
+        out.append({"mu": level, "theta": f"{th:.10g}", "t": f"{p['t']:.10g}", "omega3": f"{p['omega3']:.6g}",
+                    "phidot": f"{p['phidot']:.6g}", "adiabatic": f"{float(pred.adiabatic_parameter(th)):.2g}"})
+    return {"law": law, "c": STUDY_C[law], "t0_transported": f"{pred.t0_transported:.10g}",
+            "t0_family": mpmath.nstr(pred.t0_family, 10), "levels": out}
+
+
+def slip_runs(law: str) -> dict:
+    """Route 2: the dissipative run of the study (``disk+<law>`` at its coefficient, from the exact
+    Eq. 45 state at THETA0) with the engine's ``slips`` event, for each of MU_LEVELS in turn.
+
+    mu_req only grows along this run (the centre of mass circles ever faster as omega3 builds
+    up and phidot grows), so the run for the next mu continues from the state where the last
+    one slipped (mu_req there is the last mu, below the next: a valid start), and the legs
+    together cost one run to the largest mu's slip.  Each leg's state at the event is the last
+    column of its run; its mu_req (the engine's cfunc on it) equals mu to the event's precision.
+    """
+    from verify.engine.single import solve
+
+    from .dissipation import STUDY_C, THETA0, predict
+    from .spindown import spindown
+
+    c = STUDY_C[law]
+    pred = predict(law, c)
+    horizon = pred.t0_transported * (1 + 1e-6)  # the transported t0 and a little: slip or singularity before it
+    s = spindown("disk", THETA0, "cm-at-rest")
+    state = {"theta": THETA0, "phidot": mpmath.nstr(s.phidot, 45), "psidot": mpmath.nstr(s.psidot, 45)}
+    elapsed, legs = 0.0, []
+    for level in MU_LEVELS:
+        sol = solve(f"disk+{law}", repr(horizon - elapsed), state, {"c": c}, friction=level, n_eval=2)
+        leg = {"mu": level, "outcome": sol.outcome, "steps": int(sol.steps)}
+        if sol.outcome != "slips":
+            legs.append({**leg, "t_end": f"{elapsed + float(sol.t[-1]):.10g}", "theta_end": f"{float(sol['theta'][-1]):.6g}"})
+            break
+        y = sol.y[:, -1]
+        elapsed += float(sol.t_events["slips"])
+        th, phd, psd = float(y[0]), float(y[4]), float(y[5])
+        legs.append({**leg, "t": f"{elapsed:.10g}", "theta": f"{th:.10g}", "thetadot": f"{float(y[3]):.4g}",
+                     "phidot": f"{phd:.6g}", "omega3": f"{psd + phd * math.cos(th):.6g}",
+                     "mu_at_event": f"{float(sol.friction_required[-1]):.12g}",
+                     "before_t0_transported_by": f"{pred.t0_transported - elapsed:.6g}"})
+        state = [float(v) for v in y]
+    return {"law": law, "c": c, "start": {k: v[:20] for k, v in state.items()} if isinstance(state, dict) else None,
+            "t0_transported": f"{pred.t0_transported:.10g}", "legs": legs}
