@@ -27,17 +27,42 @@ omega3 (spin about the symmetry axis) is not damped; on the family omega3 = 0 an
 The two laws
 ------------
 * ``moffatt`` (n = 3).  Moffatt, Nature 404, 833 (2000): a viscous air film between the disk
-  (radius a) and the table, gap h_gap = a alpha at tilt alpha, dissipates
-  Phi = pi mu a^4 Omega^2 / (2 h_gap) = pi mu a^3 Omega^2 / (2 alpha), Omega the rate at which
-  the contact point goes round (phidot).  On the steady family |omega_perp| = Omega sin(alpha)
-  (omega_perp = omega1 e1 + omega2 e2), so with alpha ~ sin(alpha) at small tilt
-  Phi = (pi mu a^3 / 2) |omega_perp|^2 / sin^3(alpha).  Dividing by m a^2 (energies here are per
-  m R^2, R = a) gives
+  (radius a) and the table, gap h_gap = a alpha at tilt alpha, sheared as by one face turning at
+  Omega relative to the other (u = Omega r z / h_gap, a plane Couette profile across the gap),
+  Omega the rate at which the contact point goes round (phidot).  Its dissipation is
+  Phi = int mu |du/dz|^2 dV = int_0^a mu (Omega r)^2 / h_gap 2 pi r dr = pi mu a^4 Omega^2 / (2 h_gap)
+  = pi mu a^3 Omega^2 / (2 alpha) (the integral is done with sympy in tests/test_dissipation.py).
+  On the steady family |omega_perp| = Omega sin(alpha) (omega_perp = omega1 e1 + omega2 e2), so
+  with alpha ~ sin(alpha) at small tilt Phi = (pi mu a^3 / 2) |omega_perp|^2 / sin^3(alpha).
+  Dividing by m a^2 (energies here are per m R^2, R = a) gives
 
       c = pi mu a / (2 m)     [s^-1],   see :func:`moffatt_coefficient`;
 
   air (mu = 1.8e-5 Pa s), a = 1 cm (g = 980 s^-2), m = 5 g give c = 9 pi / 500000 = 5.65e-5 s^-1,
   the default.
+
+  The time to the singularity.  With the family's energy E = (3/2) m g a sin(alpha) (derived from
+  the model, :func:`verify.studies.dissipation.family_law`) and Omega^2 sin(alpha) = 4 g / a
+  (paper Eq. 45 with k = 1/4), dE/dt = -Phi gives sin^2(alpha) d(sin alpha)/dt = -4 pi mu a / (3 m),
+  so
+
+      t0 = m sin^3(alpha0) / (4 pi mu a),   see :func:`moffatt_time_to_singularity`.
+
+  The formula usually quoted as Moffatt's, t0 = alpha0^3 m / (2 pi mu a) (with the breakdown time
+  tau ~ (2a/9g)^(3/5) (2 pi mu a/m)^(1/5), i.e. alpha^3 = (2 pi mu a/m)(t0 - t)), is twice this: it is
+  what half the dissipation above, Phi = pi mu a^4 Omega^2 / (4 h_gap), would give with the same E
+  and Omega.  The factor is not in E(alpha) nor in Omega(alpha): both are derived from the model
+  and agree with Moffatt's Eqs. 1-2 as others quote them (Omega^2 alpha = 4g/a, E = (3/2) M g a
+  sin(alpha): Kilty, http://www.kilty.com/euler.htm; Bildsten, arXiv:gr-qc/0102046, with the gap
+  "of width ~ a alpha"); it sits between the Couette Phi and the quoted rate law (t0 and tau as in
+  Wikipedia's "Euler's disk").  Moffatt's printed Phi and any later correction were not available
+  to us, so which of the two he wrote is not settled here; the couple is defined by the Couette
+  Phi above and its t0 follows from it.  The coefficient is anyway a model of the film, not a
+  measured number: the same Couette film over the wedge-shaped gap h = alpha (a + r cos(angle))
+  dissipates (4 pi / 3) mu a^3 Omega^2 / alpha (8/3 of the above), a
+  squeeze film (Reynolds) in the uniform gap (pi / 8) mu a^3 Omega^2 / alpha.  The study's runs
+  set c directly (:data:`verify.studies.dissipation.STUDY_C`), so no reported number depends on
+  this factor; only a reading of c in terms of mu, a, m does.
 * ``contact-rate`` (n = 2).  McDonald & McDonald (arXiv:physics/0008227): a power loss
   proportional to the square of the rate at which the contact point goes round,
   P = -c Omega^2; on the steady family Omega = phidot and |omega_perp|^2 / sin^2 = phidot^2, so
@@ -48,7 +73,7 @@ The approximation
 -----------------
 Both published laws are stated for the steady motion only (thetadot = 0, phidot^2 =
 g/(k sin theta), omega3 = 0: the family on which Eq. 45 is exact).  The couple reproduces the
-published dissipation rate exactly on that family (Moffatt's with sin(alpha) for alpha in
+stated dissipation rate exactly on that family (the Couette Phi with sin(alpha) for alpha in
 the gap, a relative O(alpha^2) difference); away from it (nutation, thetadot != 0,
 omega3 != 0) the form ``c sin^-n |omega_perp|^2`` is a modelling choice, not a result of either
 paper: it is the simplest smooth, frame-indifferent term that is quadratic in the rocking
@@ -120,6 +145,15 @@ def moffatt_coefficient(mu, a, m):
     Works for numbers and sympy expressions.
     """
     return sp.pi * sp.sympify(mu) * sp.sympify(a) / (2 * sp.sympify(m))
+
+
+def moffatt_time_to_singularity(mu, a, m, alpha0):
+    """t0 = m sin^3(alpha0) / (4 pi mu a) in s: the time the ``moffatt`` couple with
+    c = :func:`moffatt_coefficient` (mu, a, m) takes to bring the disk down its steady family from
+    tilt alpha0 to 0 (module docstring, "The time to the singularity"; not the quoted
+    alpha0^3 m / (2 pi mu a), which is twice it).  Works for numbers and sympy expressions.
+    """
+    return sp.sympify(m) * sp.sin(sp.sympify(alpha0)) ** 3 / (4 * sp.pi * sp.sympify(mu) * sp.sympify(a))
 
 
 def rocking_rate_squared() -> sp.Expr:

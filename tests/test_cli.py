@@ -26,7 +26,8 @@ def test_trajectory_json_in_double(capsys):
     assert code == 0
     rec = json.loads(out)
     assert list(rec) == ["model", "equations", "precision", "params", "t_end", "outcome", "t", "steps", "state",
-                         "invariants", "friction_required"]
+                         "invariants", "friction_required", "friction"]
+    assert rec["friction"] is None  # unlimited friction unless --friction is given
     assert rec["model"] == "disk" and rec["equations"] == "derived" and rec["precision"] == "double"
     assert rec["params"] == {"k": 0.25, "g": 980.0}
     assert rec["outcome"] == "ok" and rec["t"] == 1.0 and rec["steps"] > 0
@@ -119,3 +120,23 @@ def test_exit_status_from_a_real_process():
     missing = subprocess.run([sys.executable, "-m", "verify", "trajectory", "disk"], capture_output=True, text=True,
                              env=env, cwd=ROOT)
     assert missing.returncode == 2 and "--t-end" in missing.stderr
+
+
+def test_trajectory_with_friction_stops_where_it_slips(capsys):
+    code, out, _ = run(capsys, "trajectory", "disk", "--state", "theta=1.3", "--state", "thetadot=0.5", "--state",
+                       "phidot=3", "--state", "psidot=20", "--t-end", "2", "--friction", "0.3", "--format", "json")
+    assert code == 0
+    rec = json.loads(out)
+    assert rec["outcome"] == "event:slips" and rec["friction"] == 0.3
+    assert abs(rec["friction_required"]["max"] - 0.3) < 1e-14 and rec["friction_required"]["t_max"] == rec["t"]
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["disk", "--state", "theta=1.3", "--friction", "-1"], "--friction -1: allowed a positive finite number"),
+    (["sliding-disk", "--state", "theta=1.3", "--friction", "0.2"], "has no rolling contact"),
+    (["disk", "--state", "theta=1.3", "--state", "thetadot=0.5", "--state", "phidot=3", "--state", "psidot=20",
+      "--friction", "0.2"], "needs the friction coefficient mu_req"),
+])
+def test_trajectory_friction_bad_input_is_one_line_and_exit_2(capsys, argv, words):
+    code, out, err = run(capsys, "trajectory", *argv, "--t-end", "1")
+    assert code == 2 and out == "" and words in err and err.count("\n") == 1 and "Traceback" not in err

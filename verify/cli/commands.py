@@ -25,13 +25,14 @@ def cmd_trajectory(args, session: Session) -> int:
     t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
     tol = None if args.tol is None else _positive(args.tol, "--tol", "1e-15 (the Taylor tolerance; default: the precision's epsilon)")
     n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)  # at least the start and t_end
+    friction = None if args.friction is None else _positive(args.friction, "--friction", "0.5 (a friction coefficient)")
     model = get_model(args.model, args.equations)
     show = args.progress if args.progress is not None else args.format == "text"
     bar = _Progress(sys.stderr, f"trajectory {args.model}", t_end, show)
     with bar:
         try:
             sol = solve(model, t_end, state, params, precision=precision, tol=tol, n_eval=n_eval,
-                        high_accuracy=args.high_accuracy, progress=bar.update)
+                        high_accuracy=args.high_accuracy, progress=bar.update, friction=friction)
         except ValueError as err:
             raise UsageError(str(err)) from None
         except IntegrationError as err:  # the run up to its failure, if the integrator kept it, then exit 1

@@ -22,6 +22,7 @@ def trajectory_record(sol) -> dict:
         "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
         "invariants": {name: _drifts(p, tr) for name, tr in sol.invariants.items()},
         "friction_required": _friction(p, sol),
+        "friction": None if sol.friction is None else p.to_json(sol.friction),
     }
 
 
@@ -67,6 +68,8 @@ def _text(record: dict) -> str:
     lines += [f"  {n:<12} {v['initial']}  {v['final']}  {_num(v['max_abs_drift'], '.3e')}  {_num(v['max_rel_drift'], '.3e')}"
               f"  {_num(v['max_drift_vs_terms_in_eps'], '.3g')}"
               for n, v in record["invariants"].items()]
+    if record.get("friction") is not None:
+        lines.append(f"friction    mu = {record['friction']}: the run stops at the event slips where mu_req reaches it")
     friction = record.get("friction_required")
     if friction is not None:
         lines.append(f"friction    mu_req = |F_h| / N needed to roll: max {_num(friction['max'], '')} at t = {_num(friction['t_max'], '')}")

@@ -39,6 +39,8 @@ def parser() -> argparse.ArgumentParser:
                    help=f"double (default), long, quad or mp:BITS (MPFR, BITS >= {MP_MIN_BITS})")
     t.add_argument("--tol", default=None, help="Taylor tolerance (default: the precision's epsilon)")
     t.add_argument("--n-eval", default="101", help=f"output points from 0 to t_end (default 101; 2 to {N_EVAL_MAX})")
+    t.add_argument("--friction", default=None, metavar="MU",
+                   help="a friction coefficient: stop at the event slips where the rolling motion needs more")
     t.add_argument("--high-accuracy", action="store_true",
                    help="heyoka's compensated summation: energy error ~ t^0.5 over 1e6 steps (python -m verify bench)")
     t.add_argument("--format", choices=("json", "text"), default="text")

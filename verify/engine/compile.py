@@ -23,7 +23,7 @@ usual case: N/(Mg) is of order 1 and its coefficients are those of the accelerat
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import heyoka as hy
@@ -58,6 +58,7 @@ class CompiledModel:
     has_normal_force: bool
     n_pars_system: int  # heyoka wants exactly as many parameter values as the highest par[i] used
     n_pars_function: int
+    friction: bool = False  # the terminal event ``slips`` reads a friction coefficient from par[len(parameters)]
 
     def parameter_vector(self, values: Mapping, for_function: bool = False, every: bool = False):
         """The ``par[i]`` values of the system (or of ``invariant_function``) from a name -> value mapping.
@@ -68,6 +69,9 @@ class CompiledModel:
         given; the values are read at the compiled precision.  ``every``: all of the model's
         parameters, for a system extended with more ``par[i]`` after them.
         """
+        if self.friction and not (every or for_function):
+            raise ValueError("a system with the slip event reads every parameter and then the friction "
+                             "coefficient: lay it out with every=True and append the coefficient")
         names = self.model.parameter_names
         unknown = [n for n in values if n not in names]
         if unknown:
@@ -122,6 +126,50 @@ def contact_event(model: Model, mapping: dict, accelerations):
     if f is None:
         return None
     return to_heyoka(f, {**mapping, **dict(zip(ACCELERATIONS, accelerations))})
+
+
+#: The friction coefficient of the terminal event ``slips``; compiled as ``par[len(model.parameters)]``.
+FRICTION = sp.Symbol("friction", positive=True)
+
+
+def slip_event_function(model: Model):
+    """(F_h/(Mg friction))^2 - (N/(Mg))^2 as the terminal event ``slips`` reads it, or None.
+
+    Positive exactly where the rolling motion needs more than ``friction`` (mu_req = |F_h|/N >
+    friction with N > 0, paper Eq. 6: F = M (a_C + g Z)); the accelerations are left as the symbols
+    ``ACCELERATIONS``, as in :func:`contact_event_function`, so that the event shares the right-hand
+    side's Taylor decomposition.  Squares, not mu_req itself: mu_req's square root and quotient are
+    not smooth where F_h or N vanish, and would steer heyoka's steps (see the module docstring).  The
+    horizontal force is divided by the coefficient, not the normal force multiplied by it, so that
+    the function keeps the scale of (N/(Mg))^2 ~ 1 while the motion rolls well within its friction,
+    whatever the coefficient (friction^2 N^2 would be 1e12 for friction = 1e6 and take over the
+    step-size rule).  None without rolling contact.
+    """
+    normal = contact_event_function(model)
+    if model.horizontal_acceleration is None or normal is None:
+        return None
+    fx, fy = (a / g for a in model.horizontal_acceleration)
+    return (fx ** 2 + fy ** 2) / FRICTION ** 2 - normal ** 2
+
+
+@lru_cache(maxsize=None)
+def compile_with_friction(model: Model, precision: Precision) -> CompiledModel:
+    """:func:`compile_model` with one more terminal event, ``slips`` (direction positive).
+
+    The run stops where the friction the rolling motion needs reaches the coefficient in
+    ``par[len(model.parameters)]`` (:func:`slip_event_function`); a sweep over it needs no
+    recompilation.  Raises ``ValueError`` for a model without rolling contact.
+    """
+    f = slip_event_function(model)
+    if f is None:
+        raise ValueError(f"model {model.name!r} has no rolling contact, so no friction to run out of; allowed: "
+                         "friction with a model that rolls (python -m verify models)")
+    base = compile_model(model, precision)
+    mapping = symbol_map(model, base.variables)
+    mapping[FRICTION] = hy.par[len(model.parameters)]
+    mapping.update(zip(ACCELERATIONS, [rhs for _, rhs in base.system[3:6]]))
+    slips = ("slips", to_heyoka(f, mapping), hy.event_direction.positive)
+    return replace(base, events=base.events + (slips,), n_pars_system=len(model.parameters) + 1, friction=True)
 
 
 @lru_cache(maxsize=None)

@@ -53,11 +53,20 @@ def as_float(values) -> np.ndarray:
         return np.array([float(v) for v in np.ravel(values)]).reshape(np.shape(values))
 
 
-def failure(model: Model, compiled, run, t, y, pars, events: bool, messages):
+#: How far (in units of the precision's epsilon, times max(1, mu)) a returned state's mu_req may exceed the
+#: friction coefficient before it counts as a missed ``slips`` event: far above the rounding of the
+#: friction cfunc (some forty operations, each to half an ulp; its conditioning is of order 1 while
+#: N/(Mg) is, and N <= 0 is caught before), far below what a missed event leaves behind, where mu_req
+#: grows past mu at its own rate over the spacing of the outputs.
+SLIP_SLACK_EPS = 2 ** 10
+
+
+def failure(model: Model, compiled, run, t, y, pars, events: bool, messages, friction=None):
     """((outcome, number of valid leading outputs, message) of a failed run or None, normal force).
 
     The guard of the module docstring: heyoka's own failures first, then every returned state
-    against the domain and (events on) the normal force, which is returned for the record (None
+    against the domain, (events on) the normal force and (with ``friction``) the friction it needs
+    (:data:`SLIP_SLACK_EPS`); the normal force is returned for the record (None
     with events off or without a contact).  At a terminal event's own output the event's function
     is ~0 with either sign, so that one condition is not applied there.  Runs on every output of
     every run, so it works on whole arrays, converted to double as the checks always were.
@@ -101,6 +110,17 @@ def failure(model: Model, compiled, run, t, y, pars, events: bool, messages):
         return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} the normal "
                 f"force N/(Mg) = {float(normal[k]):.6g} <= 0 without the terminal event contact_lost: heyoka's event "
                 f"detection failed{extra}; the run is not reliable from there"), normal
+    if friction is not None:
+        need = inv.friction_required(compiled, y, pars)
+        eps = compiled.precision.eps
+        within = need <= friction + SLIP_SLACK_EPS * eps * max(1, friction)
+        if ev == "slips":
+            within[-1] = True
+        if not within.all():
+            k = int(np.argmin(within))
+            return ("failed:event_detection", k, f"the integration of {name!r} failed: at t = {float(t[k]):.9g} the "
+                    f"rolling motion needs mu_req = {float(need[k]):.9g} > friction = {friction} without the terminal "
+                    f"event slips: heyoka's event detection failed; the run is not reliable from there"), normal
     if detection:
         return ("failed:event_detection", len(t) - 1, f"the integration of {name!r} failed: heyoka's event detection "
                 f"failed during the run ({detection[0]}); an event may have been missed"), normal

@@ -74,7 +74,7 @@ def borrowed(key, build, time, state, pars):
 def for_model(compiled, tol, *, events: bool, high_accuracy: bool):
     """(key, build) of the integrator of a compiled model's eight equations (:mod:`.single`)."""
     prec = compiled.precision
-    key = ("model", compiled.model, prec, prec.to_text(tol), bool(events), bool(high_accuracy))
+    key = ("model", compiled.model, prec, prec.to_text(tol), bool(events), bool(high_accuracy), compiled.friction)
 
     def build():
         n_state = len(compiled.system)

@@ -19,7 +19,7 @@ from models import get_model
 from models.base import Model
 
 from . import validation
-from .compile import CompiledModel, compile_model
+from .compile import CompiledModel, compile_model, compile_with_friction
 from ..precision import Precision, parse_precision
 
 
@@ -41,6 +41,10 @@ class Problem:
         Whether the model's terminal events (the domain's ends, loss of contact) stop the run.
     high_accuracy : bool
         heyoka's high-accuracy mode.
+    friction : number or None
+        A friction coefficient at ``precision``: the run also stops at the terminal event ``slips``,
+        where the friction the rolling motion needs reaches it
+        (:func:`verify.engine.compile.slip_event_function`).  None: unlimited friction.
     """
 
     model: Model
@@ -50,15 +54,21 @@ class Problem:
     tol: object
     events: bool = True
     high_accuracy: bool = False
+    friction: object = None
 
     @cached_property  # once per Problem: the lookup hashes the whole Model (~5 us a time)
     def compiled(self) -> CompiledModel:
+        if self.friction is not None:
+            return compile_with_friction(self.model, self.precision)
         return compile_model(self.model, self.precision)
 
     @property
     def par_vector(self) -> np.ndarray:
-        """The values of the system's ``par[i]``, by name."""
-        return self.compiled.parameter_vector(self.params)
+        """The values of the system's ``par[i]``, by name (then the friction coefficient, if any)."""
+        if self.friction is None:
+            return self.compiled.parameter_vector(self.params)
+        values = self.compiled.parameter_vector(self.params, every=True)
+        return np.append(values, self.precision.array([self.friction]))
 
     @property
     def max_step(self):
@@ -75,7 +85,7 @@ def resolve_model(model, equations: str = "derived") -> Model:
 
 
 def problem(model, state=None, params=None, *, precision="double", equations: str = "derived", tol=None,
-            events: bool = True, high_accuracy: bool = False) -> Problem:
+            events: bool = True, high_accuracy: bool = False, friction=None) -> Problem:
     """Resolve and validate a run's start and settings once (arguments as for :func:`.single.solve`).
 
     Raises ``ValueError`` (an :class:`verify.engine.validation.InvalidStart` for the start) naming
@@ -86,8 +96,9 @@ def problem(model, state=None, params=None, *, precision="double", equations: st
     tol_value = validation.tolerance(tol, prec)
     events = validation.flag("events", events)
     high_accuracy = validation.flag("high_accuracy", high_accuracy)
-    y0, pars = validation.validate(model, state, params, prec)
-    return Problem(model, prec, pars, y0, tol_value, events, high_accuracy)
+    friction = validation.friction(model, friction, events, prec)
+    y0, pars = validation.validate(model, state, params, prec, friction=friction)
+    return Problem(model, prec, pars, y0, tol_value, events, high_accuracy, friction)
 
 
 def max_step(y0, pars: dict, prec: Precision):

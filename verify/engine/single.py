@@ -66,6 +66,7 @@ def solve(
     events: bool = True,
     high_accuracy: bool = False,
     progress=None,
+    friction=None,
 ) -> Trajectory:
     """Integrate ``model`` from ``state`` at time 0 to ``t_end``.
 
@@ -109,6 +110,13 @@ def solve(
         (a float, seconds) and the Taylor steps taken so far; not necessarily at the end.  It runs
         in the integrating thread; an exception it raises ends the run.  None (the default)
         costs nothing.
+    friction : number or decimal string, optional
+        A friction coefficient mu > 0 for a model that rolls: the run also stops at the terminal
+        event ``slips`` (outcome ``event:slips``), where the friction the rolling motion needs,
+        mu_req = |F_h|/N (``sol.friction_required``), reaches mu -- where a body on a table with that
+        coefficient starts to slip.  Needs ``events=True``.  A start with mu_req >= mu is refused
+        (:class:`~verify.engine.validation.InvalidStart`, reason ``slips``).  None (the default):
+        unlimited friction, no such event.
 
     Raises
     ------
@@ -128,9 +136,10 @@ def solve(
     high_accuracy = validation.flag("high_accuracy", high_accuracy)
     if progress is not None and not callable(progress):
         raise ValueError(f"progress={progress!r} is not callable; allowed: None or a function progress(t, steps)")
-    y0, pars = validation.validate(model, state, params, prec)  # compiles the model only to check N
-    return propagate(Problem(model, prec, pars, y0, tol_value, events, high_accuracy), t_end, grid, with_start,
-                     progress)
+    friction = validation.friction(model, friction, events, prec)
+    y0, pars = validation.validate(model, state, params, prec, friction=friction)  # compiles the model to check N
+    return propagate(Problem(model, prec, pars, y0, tol_value, events, high_accuracy, friction), t_end, grid,
+                     with_start, progress)
 
 
 def propagate(problem: Problem, t_end, grid, with_start: bool = True, progress=None) -> Trajectory:
@@ -150,7 +159,7 @@ def propagate(problem: Problem, t_end, grid, with_start: bool = True, progress=N
             run = propagate_segments(ta, grid, t_end, problem.max_step, prec, progress)
         end = End(ta.time, list(ta.state), ta.tol)
     t, y = run.t, np.ascontiguousarray(run.y.T)
-    fail, normal = failure(model, compiled, run, t, y, pars, problem.events, messages)
+    fail, normal = failure(model, compiled, run, t, y, pars, problem.events, messages, problem.friction)
     if fail is not None:
         label, good, message = fail
         record = partial(model, compiled, prec, pars, t_end, t, y, good, label, message, run.steps, end.tol)
@@ -164,7 +173,7 @@ def propagate(problem: Problem, t_end, grid, with_start: bool = True, progress=N
     return Trajectory(
         model=model.name, equations=model.equations, precision=prec, params=pars, t_end=t_end, t=t, y=y,
         status=status, message=message, outcome=label, t_events=t_events, steps=run.steps, tol=end.tol,
-        evaluation=lazy,
+        evaluation=lazy, friction=problem.friction,
     )
 
 

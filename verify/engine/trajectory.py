@@ -56,6 +56,9 @@ class Trajectory:
         friction with which the body rolls as computed (F_h the horizontal contact force,
         paper Eq. 6); NaN where N <= 0.  None for a model without rolling contact.  Evaluated
         when first read (a cfunc compiled for it then), apart from the invariants.
+    friction : number or None
+        The friction coefficient the run was given (``solve(friction=...)``; the terminal event
+        ``slips`` stops it where mu_req reaches it), or None: unlimited friction.
     """
 
     model: str
@@ -73,6 +76,7 @@ class Trajectory:
     tol: object
     evaluation: inv.OnDemand = field(repr=False, compare=False)
     state_names: tuple = STATE_NAMES
+    friction: object = None
 
     @property
     def invariants(self) -> dict:

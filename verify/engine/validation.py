@@ -13,7 +13,8 @@ words:
   model's domain (the open interval whose ends are its terminal events), the model's
   constraints (the effective Lagrangian's psidot = phidot), and a positive normal force
   N/(Mg) > 0 where the model has a contact (N <= 0: the body would leave the plane at t = 0, so
-  a run would stop there at ``contact_lost`` with no dynamics in it).
+  a run would stop there at ``contact_lost`` with no dynamics in it); with a friction coefficient
+  mu, a required friction mu_req < mu (else the body slips at t = 0 and no rolling run exists).
 
 Every refusal is an :class:`InvalidStart` (a ``ValueError``) whose message names the value and
 what is allowed, and whose ``reason`` is one of :data:`REASONS`.
@@ -36,7 +37,7 @@ from ..precision import Precision
 
 #: Why a start is refused (``InvalidStart.reason``).
 REASONS = ("unknown_name", "not_a_number", "non_finite", "parameter_range", "parameter_relation", "shape",
-           "outside_domain", "constraint", "normal_force")
+           "outside_domain", "constraint", "normal_force", "slips")
 
 STATE_ORDER = ", ".join(STATE_NAMES)
 
@@ -317,11 +318,12 @@ def _overflowing_invariant(model: Model, rows: np.ndarray):
     return None
 
 
-def validate(model: Model, state_values, params, precision: Precision, compiled=None):
+def validate(model: Model, state_values, params, precision: Precision, compiled=None, friction=None):
     """(initial state, parameters) at ``precision``, or :class:`InvalidStart` naming the first problem.
 
     The single entry point of ``solve``: parameters, state, then the start as a whole
-    (:func:`start_problems`) with the normal force from the compiled model at ``precision``.
+    (:func:`start_problems`) with the normal force from the compiled model at ``precision``, and
+    with ``friction`` (checked by :func:`friction`) the friction the start needs.
     """
     pars = parameters(model, params, precision)
     y0 = state(model, state_values, precision)
@@ -341,9 +343,37 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
         if model.normal_force is not None and compiled.has_normal_force:  # the rest was checked above
             low = _normal_force_problems(model, rows[compiled.n_invariants])
             problem = low[0] if low else None
+    if problem is None and friction is not None:
+        problem = _slip_problem(model, y0, pars, friction, precision)
     if problem is not None:
         raise InvalidStart(problem[2], problem[1])
     return y0, pars
+
+
+def friction(model: Model, value, events: bool, precision: Precision):
+    """A friction coefficient at ``precision`` (finite, > 0) for a model that rolls, or None for None."""
+    if value is None:
+        return None
+    if model.friction_required is None:
+        raise ValueError(f"friction={value!r}: model {model.name!r} has no rolling contact, so no friction to run "
+                         "out of; allowed: friction with a model that rolls (python -m verify models)")
+    if not events:
+        raise ValueError(f"friction={value!r} with events=False: the slip is a terminal event; allowed: "
+                         "events=True, or no friction")
+    return positive_number("friction", value, precision)
+
+
+def _slip_problem(model: Model, y0, pars: dict, friction, precision: Precision):
+    """('slips', message) as a problem if the start needs mu_req >= ``friction``, else None."""
+    from .compile import compile_model
+    from .invariants import friction_required
+
+    need = friction_required(compile_model(model, precision), y0[:, None].copy(), pars)[0]
+    if need < friction:
+        return None
+    return (0, "slips", f"the start of {model.name!r} needs the friction coefficient mu_req = |F_h|/N = "
+            f"{float(need):.9g} >= friction = {friction}: it slips at t = 0 and cannot roll; allowed: "
+            "friction > the start's mu_req, or a start that needs less")
 
 
 # --- run settings ----------------------------------------------------------------------------------

@@ -1,0 +1,135 @@
+"""The terminal event ``slips``: where a rolling motion needs more friction than a given coefficient.
+
+The event is located by heyoka on (F_h/(Mg mu))^2 - (N/(Mg))^2 (``verify.engine.compile``).  The
+checks here come from elsewhere: the friction cfunc (mu_req = |F_h|/N, written apart from the event)
+evaluated on a run *without* the event, at a higher precision, at the event time the run with it
+reports; and the runs' own records.  A deliberately wrong event function must fail the same check.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import heyoka as hy
+import numpy as np
+import pytest
+
+from models import get_model
+from models.symbols import ACCELERATIONS
+from verify.engine import compile as comp
+from verify.engine import validation
+from verify.engine.problem import problem
+from verify.engine.single import propagate, solve
+from verify.precision import parse_precision
+
+START = dict(theta="1.3", phi="0.3", psi="-0.7", thetadot="0.5", phidot="3", psidot="20")
+HIGHER = {"double": "quad", "long": "quad", "quad": "mp:192"}
+
+
+def slip_mismatch_in_eps(sol, mu: str, referee: str) -> float:
+    """|mu_req - mu| / (mu eps) at the run's event time, mu_req from a run without the event at ``referee``.
+
+    The referee integrates the same start without friction to the reported event time (read
+    exactly at the higher precision), and evaluates mu_req there with the friction cfunc: an
+    independent route to the friction the motion needs at that instant.
+    """
+    t_event = sol.t_events["slips"]
+    ref = solve(sol.model, parse_precision(referee).number(str(t_event)), START,
+                precision=referee, n_eval=2)
+    need = ref.friction_required[-1]
+    eps = sol.precision.eps
+    return float(abs(need - parse_precision(referee).number(mu)) / parse_precision(referee).number(mu)) / eps
+
+
+def bound_in_eps(sol) -> float:
+    # The state at the event carries the integration's error, tol = eps per step relative, over
+    # sol.steps steps; the event's root is found to the rounding of its function (a few eps on each
+    # square, their difference conditioned by ~1 at a crossing where both are ~1); the cfunc adds
+    # its own rounding.  8 eps per step (plus one) covers these with room; measured 0.07-4.7 eps
+    # (double, long, quad; mu = 0.3 and 0.5, 4 and 9 steps).
+    return 8.0 * (1 + sol.steps)
+
+
+@pytest.mark.parametrize("precision", ["double", "long", "quad"])
+@pytest.mark.parametrize("mu", ["0.3", "0.5"])
+def test_slip_time_agrees_with_the_friction_needed_at_a_higher_precision(precision, mu):
+    sol = solve("disk", 2, START, precision=precision, friction=mu)
+    assert sol.outcome == "event:slips" and sol.status == 1
+    assert float(sol.t_events["slips"]) == float(sol.t[-1])
+    mismatch = slip_mismatch_in_eps(sol, mu, HIGHER[precision])
+    assert mismatch <= bound_in_eps(sol), (mismatch, sol.steps)
+
+
+ROLLING_STARTS = {
+    "ring": dict(theta="1.2", thetadot="0.5", phidot="3", psidot="15"),
+    "hurricane": dict(theta="0.8", thetadot="1", phidot="10", psidot="5"),  # needs 0.287 rising to 0.317
+    "disk+moffatt": dict(theta="1.2", thetadot="0.5", phidot="3", psidot="15"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ROLLING_STARTS))
+def test_other_rolling_models_slip_where_they_need_the_coefficient(name):
+    model = get_model(name)
+    start = ROLLING_STARTS[name]
+    plain = solve(model, 1, start)
+    top = float(np.nanmax(plain.friction_required))
+    assert top > 1.01 * float(plain.friction_required[0]), "the start must need more friction later"
+    mu = str(0.5 * (float(plain.friction_required[0]) + top))  # between the start's need and the run's largest
+    sol = solve(model, 1, start, friction=mu)
+    assert sol.outcome == "event:slips"
+    assert abs(float(sol.friction_required[-1]) / float(mu) - 1) <= bound_in_eps(sol) * sol.precision.eps
+    assert np.all(sol.friction_required[:-1] < float(mu))
+
+
+def test_a_run_that_never_needs_the_coefficient_is_as_accurate_as_one_without_it():
+    # The event enters heyoka's step-size rule, so the steps may differ (they do: 1741 and 1742
+    # over 10 s); judged against a quad run, both are equally good.
+    grid = np.linspace(0, 10, 11)
+    plain = solve("disk", 10, START, t_eval=grid)
+    limited = solve("disk", 10, START, t_eval=grid, friction="1e6")
+    quad = solve("disk", 10, START, t_eval=grid, precision="quad")
+    assert limited.outcome == "ok" and limited.friction == 1e6
+    error_plain = np.abs(plain.y - quad.y.astype(float)).max()
+    error_limited = np.abs(limited.y - quad.y.astype(float)).max()
+    assert error_limited <= 2 * error_plain + 64 * np.finfo(float).eps * np.abs(quad.y.astype(float)).max()
+
+
+def test_a_start_that_already_slips_is_refused_naming_its_need():
+    with pytest.raises(validation.InvalidStart, match=r"mu_req = \|F_h\|/N = 0\.2307") as err:
+        solve("disk", 2, START, friction="0.2")
+    assert err.value.reason == "slips"
+
+
+@pytest.mark.parametrize("bad, words", [
+    ("0", "positive finite"), ("-1", "positive finite"), ("nan", "not a finite"),
+])
+def test_bad_coefficients_are_named(bad, words):
+    with pytest.raises(ValueError, match=words):
+        solve("disk", 2, START, friction=bad)
+
+
+def test_friction_needs_a_rolling_contact_and_events():
+    with pytest.raises(ValueError, match="no rolling contact"):
+        solve("sliding-disk", 1, dict(theta=1.2), friction="0.5")
+    with pytest.raises(ValueError, match="events=False"):
+        solve("disk", 1, START, friction="0.5", events=False)
+
+
+def test_negative_control_a_wrong_event_function_fails_the_check():
+    """mu not squared: the event then lands where mu_req^2 = mu, and the referee sees it."""
+    model = get_model("disk")
+    prec = parse_precision("double")
+    right = comp.compile_with_friction(model, prec)
+    fx, fy = (a / comp.g for a in model.horizontal_acceleration)
+    wrong_f = (fx ** 2 + fy ** 2) / comp.FRICTION - comp.contact_event_function(model) ** 2
+    mapping = comp.symbol_map(model, right.variables)
+    mapping[comp.FRICTION] = hy.par[len(model.parameters)]
+    mapping.update(zip(ACCELERATIONS, [rhs for _, rhs in right.system[3:6]]))
+    wrong_event = ("slips", comp.to_heyoka(wrong_f, mapping), hy.event_direction.positive)
+    mislabelled = replace(model, name="disk-with-a-wrong-slip-event")  # its own integrator template
+    wrong = replace(right, model=mislabelled, events=right.events[:-1] + (wrong_event,))
+    p = problem(mislabelled, START, friction="0.3")
+    p.__dict__["compiled"] = wrong  # cached_property: the problem now integrates the wrong event
+    sol = propagate(p, prec.number(2), np.array([0.0, 2.0]))
+    assert sol.outcome == "event:slips"
+    mismatch = slip_mismatch_in_eps(replace(sol, model="disk"), "0.3", "quad")
+    assert mismatch > 1e6 * bound_in_eps(sol)
