@@ -116,21 +116,23 @@ def _slip_lines(friction: dict, steady: dict, dissipation) -> list:
             continue
         cells = [", ".join(f["roots"][m]) or "none" for m in levels]
         lines.append(f"| {f['model']} | {f['family']} | {f['max_mu']} ({f['theta_at_max']}) | " + " | ".join(cells) + " |")
-    drift, slip = friction.get("drift", {}), friction.get("slip", {})
-    if not drift and not slip:
+    laws = friction.get("slip") or {}
+    if not laws:
         return lines
+    drift = {law: v["drift"] for law, v in laws.items()}
+    slip = {law: v["run"] for law, v in laws.items()}
     fitted = {d["law"]: d["fit"]["t0"] for d in (dissipation or [])}
     lines += ["", "A coin exactly on the paper's Eq. 45 family needs no friction, so that family never slips. The dissipative",
               "runs of the dissipation study start on it but do not stay: omega3 grows from 0 as theta falls (Chaplygin's",
               "row 3, unchanged by the couple), C circles, and mu_req = |phidot omega3| / g grows. Two routes to where it",
               "reaches mu: (1) the study's quasi-steady drift, steady motions with omega3 transported in theta (the same",
               "theta for both laws; only its clock depends on the couple), the root of mu_req(theta) = mu; (2) the damped",
-              "run itself with the engine's slips event (run for each mu in turn, each from the state where the last one",
-              "slipped). They differ in physics by the run's departure from the quasi-steady drift, of the order of the",
+              "run itself with the engine's slips event (switched on shortly before route 1's slip time, from the run without",
+              "it, whose mu_req is checked below mu up to there). They differ in physics by the run's departure from the quasi-steady drift, of the order of the",
               "adiabatic parameter a(theta) = |dtheta/dt| / (theta phidot) at the slip (listed), plus the start's",
               "nutation: agreement to about that, not to round-off, is what to expect; the numbers are shown as they come.",
               "", "| law | mu | theta (drift) | theta (run) | run/drift - 1 | a(theta) | t (drift, s) | t (run, s) | "
-              "mu_req at the event | t0 fitted - t (run, s) |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+              "mu_req before the switch / at the event | t0 fitted - t (run, s) |", "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for law in sorted(set(drift) | set(slip)):
         d = {x["mu"]: x for x in drift.get(law, {}).get("levels", [])}
         s = {x["mu"]: x for x in slip.get(law, {}).get("legs", [])}
@@ -140,9 +142,10 @@ def _slip_lines(friction: dict, steady: dict, dissipation) -> list:
             rel = f"{float(th_b) / float(th_a) - 1:.2g}" if th_a and th_b else "-"
             t0 = fitted.get(law)
             before = f"{float(t0) - float(b['t']):.4g}" if t0 and b.get("t") else "-"
-            run = th_b or (f"no slip ({b['outcome']}, theta {b.get('theta_end')})" if b else "-")
+            run = th_b or (f"no slip ({b['outcome']})" if b else "-")
+            at_event = f"{b.get('plain_max', '-')} / {b.get('mu_at_event', '-')}" if b else "-"
             lines.append(f"| {law} | {m} | {th_a or 'none'} | {run} | {rel} | {a.get('adiabatic', '-')} | {a.get('t', '-')} "
-                         f"| {b.get('t', '-')} | {b.get('mu_at_event', '-')} | {before} |")
+                         f"| {b.get('t', '-')} | {at_event} | {before} |")
     t0s = "; ".join(f"{law}: fitted {fitted.get(law, '-')} s, transported {drift.get(law, {}).get('t0_transported', '-')} s"
                     for law in sorted(set(drift) | set(slip)))
     lines += ["", f"The finite-time singularity t0 of the dissipation study: {t0s}. A positive last column: the run slips",

@@ -79,7 +79,8 @@ def registry() -> list:
 
 def friction_jobs() -> list:
     """The friction section's jobs: one per paper figure with runs, the reference cases, the steady
-    families, and per dissipation law the quasi-steady drift and the damped runs with the slip event."""
+    families, and per dissipation law the slip on the quasi-steady drift and in the damped run (one job:
+    the run's slip event is switched on near the drift's slip times)."""
     from models.dissipative import LAW_NAMES
     from ..studies.friction import figure_numbers
 
@@ -87,8 +88,7 @@ def friction_jobs() -> list:
     jobs = [Job(f"friction/figures/fig-{n}", "friction_figure_job", (n,), study) for n in figure_numbers()]
     jobs += [Job("friction/reference", "friction_reference_job", (), study),
              Job("friction/steady", "friction_steady_job", (), study)]
-    jobs += [Job(f"friction/{part}/{law}", f"friction_{part}_job", (law,), study)
-             for law in LAW_NAMES for part in ("drift", "slip")]
+    jobs += [Job(f"friction/slip/{law}", "friction_slip_job", (law,), study) for law in LAW_NAMES]
     return jobs
 
 
@@ -220,13 +220,8 @@ def friction_steady_job() -> JobOutput:
     return JobOutput(steady_rows())
 
 
-def friction_drift_job(law: str) -> JobOutput:
-    from ..studies.friction import transported_slip
-
-    return JobOutput(transported_slip(law))
-
-
 def friction_slip_job(law: str) -> JobOutput:
-    from ..studies.friction import slip_runs
+    from ..studies.friction import slip_runs, transported_slip
 
-    return JobOutput(slip_runs(law))
+    drift = transported_slip(law)
+    return JobOutput({"drift": drift, "run": slip_runs(law, drift)})

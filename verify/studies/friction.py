@@ -56,9 +56,7 @@ MU_LEVELS = ("0.1", "0.2", "0.3", "0.5", "1")
 #: The bands the report reads mu_req against (see :func:`band`): 0.2 to 0.5 for a coin on
 #: glass and up to about 1 for rubber on wood, as the task that asked for this section states
 #: them; order-of-magnitude values, not measured for these bodies and cited to no source.
-BANDS = (("0.2", "held by a slippery table (mu <= 0.2)"), ("0.5", "needs a coin-on-glass table (0.2 < mu <= 0.5)"),
-         ("1", "needs a grippy table (0.5 < mu <= 1, e.g. rubber on wood)"),
-         (None, "beyond ordinary tables (mu > 1)"))
+BANDS = (("0.2", "<= 0.2"), ("0.5", "0.2-0.5"), ("1", "0.5-1"), (None, "> 1"))
 #: Output points of a reference case's run read for mu_req (the cases' own grids have 41 to 101).
 REFERENCE_POINTS = 20001
 #: Working digits of the closed form and of the steady states.
@@ -229,8 +227,10 @@ def steady_rows() -> dict:
     for (model, motion), rates in STEADY_RATES.items():
         params = dict(RING_PARAMS) if model == "ring" else {}
         motions += steady_motion_rows(model, motion, params, rates)
-    return {"spindown": families, "motions": motions,
-            "family_slip": [family_slip("disk", "zero-vertical-spin", {}),
+    return {"bands": [label for _, label in BANDS], "agreement_factor": AGREEMENT_FACTOR,
+            "cfunc_precisions": list(CFUNC_PRECISIONS), "mu_levels": list(MU_LEVELS),
+            "spindown": families, "motions": motions,
+            "family_slip": [family_slip("disk", "cm-at-rest", {}), family_slip("disk", "zero-vertical-spin", {}),
                             family_slip("ring", "zero-vertical-spin", dict(RING_PARAMS))]}
 
 
@@ -525,40 +525,73 @@ def transported_slip(law: str) -> dict:
             "t0_family": mpmath.nstr(pred.t0_family, 10), "levels": out}
 
 
-def slip_runs(law: str) -> dict:
-    """Route 2: the dissipative run of the study (``disk+<law>`` at its coefficient, from the exact
-    Eq. 45 state at THETA0) with the engine's ``slips`` event, for each of MU_LEVELS in turn.
+#: Output points of the run without the slip event, on which its mu_req is checked to stay below mu.
+PLAIN_POINTS = 2001
+#: The slip event is switched on this long before the drift's slip time, relative to it (or at
+#: most (t0 - that time) before, whichever is shorter).
+EVENT_LEAD = 1e-3
 
-    mu_req only grows along this run (the centre of mass circles ever faster as omega3 builds
-    up and phidot grows), so the run for the next mu continues from the state where the last
-    one slipped (mu_req there is the last mu, below the next: a valid start), and the legs
-    together cost one run to the largest mu's slip.  Each leg's state at the event is the last
+
+def slip_runs(law: str, drift: dict) -> dict:
+    """Route 2: the dissipative run of the study (``disk+<law>`` at its coefficient, from the exact
+    Eq. 45 state at THETA0) with the engine's ``slips`` event, for each of MU_LEVELS.
+
+    The event's function (the horizontal accelerations) makes every step dearer, and the run
+    needs about 2e6 steps to the last slip, so the event is on only near each slip: one run
+    without it (``solve``, friction None) passes through a switch time for each mu, shortly
+    before the slip time ``drift`` (route 1) predicts -- EVENT_LEAD of it, at most t0 minus it
+    --, and from its state there a run with ``friction=mu`` goes on until ``slips``.  The
+    prediction only decides where the event is switched on; it cannot hide an earlier slip: the
+    run without the event has its mu_req checked below mu up to each switch time on its output
+    grid (PLAIN_POINTS points plus the switch times; ``plain_max``), and a state that already
+    needs mu is refused by ``solve`` (reported).  Each leg's state at the event is the last
     column of its run; its mu_req (the engine's cfunc on it) equals mu to the event's precision.
     """
     from verify.engine.single import solve
+    from verify.engine.validation import InvalidStart
 
-    from .dissipation import STUDY_C, THETA0, predict
+    from .dissipation import STUDY_C, THETA0
     from .spindown import spindown
 
     c = STUDY_C[law]
-    pred = predict(law, c)
-    horizon = pred.t0_transported * (1 + 1e-6)  # the transported t0 and a little: slip or singularity before it
+    model = f"disk+{law}"
+    t0 = float(drift["t0_transported"])
+    predicted = {x["mu"]: float(x["t"]) for x in drift["levels"] if x.get("t")}
+    switch = {m: t - min(EVENT_LEAD * t, t0 - t) for m, t in predicted.items()}
     s = spindown("disk", THETA0, "cm-at-rest")
-    state = {"theta": THETA0, "phidot": mpmath.nstr(s.phidot, 45), "psidot": mpmath.nstr(s.psidot, 45)}
-    elapsed, legs = 0.0, []
+    start = {"theta": THETA0, "phidot": mpmath.nstr(s.phidot, 45), "psidot": mpmath.nstr(s.psidot, 45)}
+    grid = sorted(set(np.linspace(0.0, max(switch.values()), PLAIN_POINTS).tolist()) | set(switch.values()))
+    plain = solve(model, repr(grid[-1]), start, {"c": c}, t_eval=grid)
+    t = np.asarray(plain.t, float)
+    need = np.asarray(plain.friction_required, float)
+    legs = []
     for level in MU_LEVELS:
-        sol = solve(f"disk+{law}", repr(horizon - elapsed), state, {"c": c}, friction=level, n_eval=2)
-        leg = {"mu": level, "outcome": sol.outcome, "steps": int(sol.steps)}
-        if sol.outcome != "slips":
-            legs.append({**leg, "t_end": f"{elapsed + float(sol.t[-1]):.10g}", "theta_end": f"{float(sol['theta'][-1]):.6g}"})
-            break
+        leg = {"mu": level}
+        if level not in switch:
+            legs.append({**leg, "outcome": "no slip predicted before t0"})
+            continue
+        i = int(np.searchsorted(t, switch[level]))
+        if i >= len(t) or t[i] != switch[level]:
+            legs.append({**leg, "outcome": f"the run without the event ended at t = {t[-1]:.10g} ({plain.outcome})"})
+            continue
+        leg["switch"] = f"{switch[level]:.10g}"
+        leg["plain_max"] = f"{float(np.nanmax(need[:i + 1])):.6g}"
+        try:
+            sol = solve(model, repr(t0 * (1 + 1e-6) - switch[level]), [float(v) for v in plain.y[:, i]], {"c": c},
+                        friction=level, n_eval=2)
+        except InvalidStart as err:
+            legs.append({**leg, "outcome": f"refused: {err.reason}"})
+            continue
+        leg["event_steps"] = int(sol.steps)
+        if sol.outcome != "event:slips":
+            legs.append({**leg, "outcome": sol.outcome, "t_end": f"{switch[level] + float(sol.t[-1]):.10g}",
+                         "theta_end": f"{float(sol['theta'][-1]):.6g}"})
+            continue
         y = sol.y[:, -1]
-        elapsed += float(sol.t_events["slips"])
         th, phd, psd = float(y[0]), float(y[4]), float(y[5])
-        legs.append({**leg, "t": f"{elapsed:.10g}", "theta": f"{th:.10g}", "thetadot": f"{float(y[3]):.4g}",
-                     "phidot": f"{phd:.6g}", "omega3": f"{psd + phd * math.cos(th):.6g}",
-                     "mu_at_event": f"{float(sol.friction_required[-1]):.12g}",
-                     "before_t0_transported_by": f"{pred.t0_transported - elapsed:.6g}"})
-        state = [float(v) for v in y]
-    return {"law": law, "c": c, "start": {k: v[:20] for k, v in state.items()} if isinstance(state, dict) else None,
-            "t0_transported": f"{pred.t0_transported:.10g}", "legs": legs}
+        legs.append({**leg, "outcome": sol.outcome, "t": f"{switch[level] + float(sol.t_events['slips']):.10g}",
+                     "theta": f"{th:.10g}", "thetadot": f"{float(y[3]):.4g}", "phidot": f"{phd:.6g}",
+                     "omega3": f"{psd + phd * math.cos(th):.6g}",
+                     "mu_at_event": f"{float(sol.friction_required[-1]):.12g}"})
+    return {"law": law, "c": c, "theta0": THETA0, "plain_steps": int(plain.steps), "plain_outcome": plain.outcome,
+            "legs": legs}
