@@ -492,10 +492,11 @@ def transported_point(law: str, th: float, pars: list) -> dict:
     return {"theta": th, "omega3": omega3, "t": t, "phidot": float(rate), "mu": float(mu)}
 
 
-def transported_slip(law: str) -> dict:
+def transported_slip(law: str, c=None) -> dict:
     """Route 1 of the spin-down's slip: where mu_req reaches each of MU_LEVELS along the drift the
     dissipation study predicts (steady motions with omega3 transported from THETA0; its theta is
-    the same for both laws, only its clock depends on the couple).
+    the same for both laws, only its clock depends on the couple).  ``c``: the couple's
+    coefficient, default the study's (:data:`~verify.studies.dissipation.STUDY_C`).
 
     The levels of the study's grid bracket each crossing; Brent's method refines it to a relative
     1e-13 in theta (the drift is integrated in double).
@@ -504,7 +505,8 @@ def transported_slip(law: str) -> dict:
 
     from .dissipation import STUDY_C, THETA0, THETA_STOP, level_grid, predict
 
-    pred = predict(law, STUDY_C[law])
+    c = STUDY_C[law] if c is None else c
+    pred = predict(law, c)
     pars = [float(pred.params[n]) for n in ("k", "g", "c")]
     levels = [float(THETA0)] + [float(v) for v in level_grid(float(THETA0), float(THETA_STOP))]
     points = [transported_point(law, th, pars) if th < float(THETA0) else
@@ -521,7 +523,7 @@ def transported_slip(law: str) -> dict:
         p = transported_point(law, th, pars)
         out.append({"mu": level, "theta": f"{th:.10g}", "t": f"{p['t']:.10g}", "omega3": f"{p['omega3']:.6g}",
                     "phidot": f"{p['phidot']:.6g}", "adiabatic": f"{float(pred.adiabatic_parameter(th)):.2g}"})
-    return {"law": law, "c": STUDY_C[law], "t0_transported": f"{pred.t0_transported:.10g}",
+    return {"law": law, "c": c, "t0_transported": f"{pred.t0_transported:.10g}",
             "t0_family": mpmath.nstr(pred.t0_family, 10), "levels": out}
 
 
@@ -550,10 +552,10 @@ def slip_runs(law: str, drift: dict) -> dict:
     from verify.engine.single import solve
     from verify.engine.validation import InvalidStart
 
-    from .dissipation import STUDY_C, THETA0
+    from .dissipation import THETA0
     from .spindown import spindown
 
-    c = STUDY_C[law]
+    c = drift["c"]  # the drift's coefficient: the same couple
     model = f"disk+{law}"
     t0 = float(drift["t0_transported"])
     predicted = {x["mu"]: float(x["t"]) for x in drift["levels"] if x.get("t")}
