@@ -63,7 +63,7 @@ REFERENCE_POINTS = 20001
 DPS = 50
 #: theta of the spin-down families' table (decimal strings); a family with no steady motion at
 #: a theta says so.
-FAMILY_THETAS = ("1.2", "1", "0.7", "0.5", "0.3", "0.1", "0.03", "1e-2", "1e-3", "1e-4", "1e-6", "1e-8")
+FAMILY_THETAS = ("1.2", "1", "0.5", "0.3", "0.1", "1e-2", "1e-4", "1e-8")
 #: Rates of the steady motions of models/steady.py in the table.
 STEADY_RATES = {("disk", "diameter-spin"): ("10", "40"), ("disk", "straight-line"): ("10", "40"),
                 ("ring", "straight-line"): ("10", "40"), ("ring", "diameter-spin"): ("5", "9", "20", "40"),
