@@ -540,7 +540,8 @@ def slip_runs(law: str, drift: dict) -> dict:
 
     The event's function (the horizontal accelerations) makes every step dearer, and the run
     needs about 2e6 steps to the last slip, so the event is on only near each slip: one run
-    without it (``solve``, friction None) passes through a switch time for each mu, shortly
+    without it (``solve``, friction None, and without the domain and contact events: it must end
+    ``ok``, with N > 0 on its grid) passes through a switch time for each mu, shortly
     before the slip time ``drift`` (route 1) predicts -- EVENT_LEAD of it, at most t0 minus it
     --, and from its state there a run with ``friction=mu`` goes on until ``slips``.  The
     prediction only decides where the event is switched on; it cannot hide an earlier slip: the
@@ -563,9 +564,14 @@ def slip_runs(law: str, drift: dict) -> dict:
     s = spindown("disk", THETA0, "cm-at-rest")
     start = {"theta": THETA0, "phidot": mpmath.nstr(s.phidot, 45), "psidot": mpmath.nstr(s.psidot, 45)}
     grid = sorted(set(np.linspace(0.0, max(switch.values()), PLAIN_POINTS).tolist()) | set(switch.values()))
-    plain = solve(model, repr(grid[-1]), start, {"c": c}, t_eval=grid)
+    # without the terminal events (a third of the cost of a step): the run must end "ok" inside the
+    # domain, and N > 0 is checked on its grid (normal_min) instead
+    plain = solve(model, repr(grid[-1]), start, {"c": c}, t_eval=grid, events=False)
     t = np.asarray(plain.t, float)
     need = np.asarray(plain.friction_required, float)
+    normal_min = float(np.min(np.asarray(plain.normal_force, float)))
+    if plain.outcome != "ok" or not normal_min > 0:
+        raise RuntimeError(f"the {model} run without events ended {plain.outcome}, min N/(Mg) {normal_min:.6g}")
     legs = []
     for level in MU_LEVELS:
         leg = {"mu": level}
@@ -596,4 +602,4 @@ def slip_runs(law: str, drift: dict) -> dict:
                      "omega3": f"{psd + phd * math.cos(th):.6g}",
                      "mu_at_event": f"{float(sol.friction_required[-1]):.12g}"})
     return {"law": law, "c": c, "theta0": THETA0, "plain_steps": int(plain.steps), "plain_outcome": plain.outcome,
-            "legs": legs}
+            "plain_normal_min": f"{normal_min:.8g}", "legs": legs}
