@@ -8,7 +8,7 @@ from .markup import text
 def _run_note(r: dict) -> str:
     notes = []
     if r.get("same_run_as"):
-        notes.append(f"the samples of '{r['same_run_as']}'")
+        return f"drawn from the samples of '{r['same_run_as']}'"
     if r.get("contact_lost_t") is not None:
         how = "stops at contact_lost" if r["outcome"] == "event:contact_lost" else "contact not enforced"
         notes.append(f"{how}: N/(Mg) <= 0 from t = {r['contact_lost_t']} s (down to {r['normal_min']}; "
@@ -111,7 +111,8 @@ def _steady_lines(steady: dict) -> list:
                   + "; ".join(f"{r['model']} {r['family']} {r['at']}" for r in missing) + "."]
     lines += ["", "| family | theta | rho_C (R) | mu_req, closed form (band) | cfunc - closed form ("
               + " / ".join(precisions) + ", eps S) |", "|---|---|---|---|---|"]
-    lines += [f"| {r['model']} {r['family']} | {r['theta']} | {r['rho_C']} | {r['mu_closed']} ({r['band']}) "
+    lines += [f"| {r['model']} {r['family']}{'' if r['at'].startswith('theta') else ', ' + r['at']} | {r['theta']} "
+              f"| {r['rho_C']} | {r['mu_closed']} ({r['band']}) "
               f"| {_steady_diff(r, precisions)} |" for r in present if not _zero(r)]
     return lines
 

@@ -182,22 +182,18 @@ def steady_point(model: str, family: str, theta, phidot, psidot, values: dict, l
 
 
 def spindown_family_rows(model: str, family: str, params: dict, thetas=FAMILY_THETAS) -> list:
-    """The spin-down family (:mod:`verify.studies.spindown`) at each theta; a theta with no
-    steady motion of the family is a row saying so."""
-    from .spindown import spindown
-
+    """The spin-down family (:mod:`verify.studies.spindown`'s construction, :func:`family_state`)
+    at each theta; a theta with no steady motion of the family is a row saying so."""
     values = _values(model, params)
     rows = []
     for th in thetas:
-        try:
-            s = spindown(model, th, family, params)
-        except ValueError as err:
-            if "no steady" not in str(err):
-                raise
-            rows.append({"model": model, "family": family, "at": f"theta = {th}", "theta": th, "none": True})
-            continue
         with mpmath.workdps(DPS):
-            rows.append(steady_point(model, family, s.theta, s.phidot, s.psidot, values, f"theta = {th}"))
+            x = mpmath.mpf(th)
+            state = family_state(model, family, x, values)
+            if state is None:
+                rows.append({"model": model, "family": family, "at": f"theta = {th}", "theta": th, "none": True})
+                continue
+            rows.append(steady_point(model, family, x, *state, values, f"theta = {th}"))
     return rows
 
 
