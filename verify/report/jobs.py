@@ -65,6 +65,7 @@ def registry() -> list:
     jobs.append(Job("dissipation", "dissipation_job", (), ("verify.studies.dissipation", "verify.report.study_figures")))
     jobs += [Job(f"retrograde/{m}", "retrograde_job", (m,), ("verify.studies.retrograde", "verify.report.retrograde"))
              for m in MECHANISMS]
+    jobs += friction_jobs()
     index = read_index()
     index_file = str(DIRECTORY / "index.json")
     for precision in REFERENCE_PRECISIONS:
@@ -73,6 +74,21 @@ def registry() -> list:
             label = group[0]["name"] if len(group) == 1 else "all"
             jobs.append(Job(f"reference/{precision}/{label}", "reference_job", (precision, [e["name"] for e in group]),
                             ("verify.reference",), (index_file, *(str(DIRECTORY / e["file"]) for e in group))))
+    return jobs
+
+
+def friction_jobs() -> list:
+    """The friction section's jobs: one per paper figure with runs, the reference cases, the steady
+    families, and per dissipation law the slip on the quasi-steady drift and in the damped run (one job:
+    the run's slip event is switched on near the drift's slip times)."""
+    from models.dissipative import LAW_NAMES
+    from ..studies.friction import figure_numbers
+
+    study = ("verify.studies.friction",)
+    jobs = [Job(f"friction/figures/fig-{n}", "friction_figure_job", (n,), study) for n in figure_numbers()]
+    jobs += [Job("friction/reference", "friction_reference_job", (), study),
+             Job("friction/steady", "friction_steady_job", (), study)]
+    jobs += [Job(f"friction/slip/{law}", "friction_slip_job", (law,), study) for law in LAW_NAMES]
     return jobs
 
 
@@ -184,3 +200,28 @@ def reference_job(precision: str, names: list) -> JobOutput:
 
     return JobOutput([c.to_record() for c in check_set(precision, names)])
 
+
+
+def friction_figure_job(figure: int) -> JobOutput:
+    from ..studies.friction import figure_rows
+
+    return JobOutput(figure_rows(figure))
+
+
+def friction_reference_job() -> JobOutput:
+    from ..studies.friction import reference_rows
+
+    return JobOutput(reference_rows())
+
+
+def friction_steady_job() -> JobOutput:
+    from ..studies.friction import steady_rows
+
+    return JobOutput(steady_rows())
+
+
+def friction_slip_job(law: str) -> JobOutput:
+    from ..studies.friction import slip_runs, transported_slip
+
+    drift = transported_slip(law)
+    return JobOutput({"drift": drift, "run": slip_runs(law, drift)})

@@ -94,6 +94,7 @@ def sections(results: dict, benchmarks: Optional[dict]) -> list:
     its Markdown body is the same claims rendered by :func:`claim_markdown`.
     """
     from .conservation import render_markdown as conservation_markdown
+    from .friction import render_markdown as render_friction
     from .reference import render_markdown as render_reference
     from .retrograde import render_markdown as render_retrograde
     from .sections import render as render_studies
@@ -126,6 +127,9 @@ def sections(results: dict, benchmarks: Optional[dict]) -> list:
     out += guarded("Reference trajectories", lambda: _split_h2("\n".join(
         render_reference(studies["reference"]["index"], studies["reference"]["checks"]))))
     out += guarded("Retrograde turn", lambda: _split_h2("\n".join(render_retrograde(studies["retrograde"])), alts))
+    if studies.get("friction") is not None:  # absent from a results.json made before the section
+        out += guarded("Friction", lambda: _split_h2("\n".join(render_friction(studies["friction"],
+                                                                               studies.get("dissipation")))))
     out += _split_h2("\n".join(benchmarks_section(benchmarks)))
     out.append(("provenance", "Provenance", "```\n" + json.dumps(results["provenance"], indent=2) + "\n```", None))
     return out

@@ -43,10 +43,17 @@ def assemble(outcomes: dict) -> dict:
     for name, o in outcomes.items():
         if name.startswith("reference/") and o.status != "failed":
             checks.setdefault(name.split("/")[1], []).extend(o.data)
+    def by_last(prefix):
+        return {name.rsplit("/", 1)[1]: o.data for name, o in outcomes.items()
+                if name.startswith(prefix) and o.status != "failed"}
+
+    friction = {"figures": [row for rows in data("friction/figures/") for row in rows],
+                "reference": one("friction/reference"), "steady": one("friction/steady"),
+                "slip": by_last("friction/slip/")}
     studies = {"thresholds": [row for rows in data("thresholds/") for row in rows], "captions": one("studies/captions"),
                "spindown": one("studies/spindown"), "precision": one("studies/precision"), "maps": data("maps/"),
                "dissipation": one("dissipation"), "retrograde": retro,
-               "reference": {"index": read_index(), "checks": checks}}
+               "reference": {"index": read_index(), "checks": checks}, "friction": friction}
     failures = [{"job": name, "error": o.error} for name, o in outcomes.items() if o.status == "failed"]
     eqs, figs = missing()
     out = {"summary": None, "claims": claims, "conservation": [row for rows in data("conservation/") for row in rows],
