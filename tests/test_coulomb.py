@@ -11,8 +11,9 @@ import pytest
 import sympy as sp
 
 from models import get_model
-from models.symbols import STATE, g, phidot, psidot, theta, thetadot
+from models.symbols import STATE
 from verify.engine import hybrid
+from verify.studies.coulomb_examples import steady_circle
 from verify.engine.single import solve
 from verify.precision import parse_precision
 
@@ -211,16 +212,7 @@ def test_large_friction_reproduces_the_rolling_disk():
 # thetadot = 0 with psidot = phidot (rho - cos theta) gives phidot; mu_req is then constant.
 
 def _steady():
-    m = get_model("disk")
-    kk, gg, th0, rho = sp.Rational(1, 4), sp.Rational(1962, 10), 5 * sp.pi / 180, sp.Rational(1, 10)
-    p = sp.Symbol("p", positive=True)
-    acc = m.accelerations[0].subs({thetadot: 0, sp.Symbol("k", positive=True): kk, g: gg})
-    rows = sp.solve(acc.subs(psidot, p * (rho - sp.cos(theta))).subs({phidot: p, theta: th0}), p)
-    rate = max(rows, key=lambda v: float(v))
-    digits = 45
-    state = {"theta": str(sp.N(th0, digits)), "phidot": str(sp.N(rate, digits)),
-             "psidot": str(sp.N(rate * (rho - sp.cos(th0)), digits))}
-    return state, {"k": "0.25", "g": "196.2"}
+    return steady_circle()  # the report's example shares it (verify.studies.coulomb_examples)
 
 
 def test_stationary_circular_rolling_keeps_rolling_above_its_friction_and_slips_below():

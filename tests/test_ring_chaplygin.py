@@ -23,7 +23,7 @@ import sympy as sp
 
 from models import get_model
 from models.ring import I1, I3, R2, R3, h, parameter_set
-from models.ring_chaplygin import (THETA_REF, KummerSolution, chaplygin_closed_form, coefficients,
+from models.ring_chaplygin import (THETA_REF, chaplygin_closed_form, coefficients,
                                    fundamental_solutions, hypergeometric_parameters, integrals)
 from models.rolling import derive
 from models.symbols import theta

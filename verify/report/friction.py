@@ -42,7 +42,7 @@ def _zero(row: dict) -> bool:
 def render_markdown(friction: dict, dissipation=None) -> list:
     """The ``## Friction`` section as Markdown lines."""
     steady = friction["steady"]
-    bands, precisions = steady["bands"], steady["cfunc_precisions"]
+    bands = steady["bands"]
     lines = [
         "## Friction",
         "",
@@ -75,6 +75,30 @@ def render_markdown(friction: dict, dissipation=None) -> list:
         lines += ["", f"Without rolling contact (smooth plane, pivot, effective Lagrangian): {', '.join(others)}."]
     lines += _steady_lines(steady)
     lines += _slip_lines(friction, steady, dissipation)
+    lines += _coulomb_lines(friction.get("coulomb"))
+    return lines
+
+
+def _coulomb_lines(examples) -> list:
+    """Rolling and sliding with Coulomb friction (``disk+coulomb``): the examples' phases and balances."""
+    if not examples:
+        return []
+    lines = ["", "**Rolling and sliding** (`disk+coulomb`: the disk rolls, or slides with F_h = -mu N u/|u|, switching at",
+             "heyoka's events; `verify.engine.hybrid`). A skid launched with the wrong centre-of-mass velocity, and the",
+             "steady circle of Le Saux, Leine & Glocker (our reading of their rho) given less friction than it needs, so that",
+             "its slip starts from s = 0. Phases from the double run; E + W (W the work of friction) in eps of E's term",
+             "scale; the switch times of double and quad apart by at most the last column, in double's eps. A slip that",
+             "starts from rolling where mu_req reaches mu exactly is not integrated (the direction of an emerging slip is",
+             "stiff like 1/t^2 there), so neither example starts rolling.", "",
+             "| example | mu | phases (ends) | E + W drift, double / quad | switch times apart |", "|---|---|---|---|---|"]
+    for e in examples:
+        phases = "; ".join(f"{p['kind']} {p['t_start']}-{p['t_end']} s ({p['ended']})" for p in e["phases"])
+        if not e["same_phases"]:
+            phases += " (quad's phases differ)"
+        need = f" (needs {e['need']})" if e.get("need") else ""
+        balance = " / ".join(e["energy_plus_work_in_eps"][p] for p in ("double", "quad"))
+        lines.append(f"| {text(e['example'])} | {e['friction']}{need} | {phases} | {balance} | "
+                     f"{e['switch_gap_in_double_eps'] or '-'} |")
     return lines
 
 

@@ -89,6 +89,7 @@ def friction_jobs() -> list:
     jobs += [Job("friction/reference", "friction_reference_job", (), study),
              Job("friction/steady", "friction_steady_job", (), study)]
     jobs += [Job(f"friction/slip/{law}", "friction_slip_job", (law,), study) for law in LAW_NAMES]
+    jobs += [Job("friction/coulomb", "coulomb_examples_job", (), ("verify.studies.coulomb_examples",))]
     return jobs
 
 
@@ -218,6 +219,12 @@ def friction_steady_job() -> JobOutput:
     from ..studies.friction import steady_rows
 
     return JobOutput(steady_rows())
+
+
+def coulomb_examples_job() -> JobOutput:
+    from ..studies.coulomb_examples import examples
+
+    return JobOutput(examples())
 
 
 def friction_slip_job(law: str) -> JobOutput:

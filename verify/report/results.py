@@ -49,7 +49,7 @@ def assemble(outcomes: dict) -> dict:
 
     friction = {"figures": [row for rows in data("friction/figures/") for row in rows],
                 "reference": one("friction/reference"), "steady": one("friction/steady"),
-                "slip": by_last("friction/slip/")}
+                "slip": by_last("friction/slip/"), "coulomb": one("friction/coulomb")}
     studies = {"thresholds": [row for rows in data("thresholds/") for row in rows], "captions": one("studies/captions"),
                "spindown": one("studies/spindown"), "precision": one("studies/precision"), "maps": data("maps/"),
                "dissipation": one("dissipation"), "retrograde": retro,
