@@ -212,3 +212,14 @@ def test_a_changed_number_changes_the_section(committed):
     row["mu_max"] = "0.123456"
     text = "\n".join(render_markdown(studies["friction"], studies.get("dissipation")))
     assert "0.123456" in text
+
+
+def test_figure_rows_run_the_figure_even_after_its_claims_were_evaluated_in_this_process():
+    """The report's pool runs several jobs in one worker: a figure's claims may have been evaluated (and
+    cached) by the claims' job before the friction job asks for the figure's runs."""
+    from verify.studies.friction import figure_claims, figure_rows
+
+    for claim in figure_claims(2):
+        claim.evaluate()
+    rows = figure_rows(2)
+    assert rows and all("run" in r for r in rows)

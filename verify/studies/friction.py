@@ -418,8 +418,9 @@ def figure_rows(figure: int) -> list:
     a figure shows is the recorded trajectory with its samples.  A run drawn from another's
     samples (Fig. 12's point A is the CM run's) is marked ``same_run_as``.
     """
-    with recorded_runs() as recorded:
-        figures = [fig for claim in figure_claims(figure) for fig in claim.evaluate().figures]
+    with recorded_runs() as recorded:  # check(), not evaluate(): evaluate() keeps an earlier evaluation's figures
+        figures = [fig for claim in figure_claims(figure) if claim.reason_not_checkable is None
+                   for fig in claim.check().figures]
     rows, seen = [], {}
     for fig in figures:
         for data in fig.runs:
