@@ -315,3 +315,13 @@ def test_a_perturbed_circle_slips_when_its_required_friction_reaches_mu():
     step = float(free.t[1])
     assert first - step <= float(err.value.t) <= first
     assert err.value.trajectory.phases[-1].ended == "slips"
+
+
+def test_the_ring_slides_sticks_and_rolls_with_its_energy_balanced():
+    """ring+coulomb (the printed ring's sliding rows, about 3500 operations, in compact mode): a skid
+    at mu = 1 sticks and rolls on; E + W within the bound argued for the disk (64 eps of E's term scale)."""
+    sol = hybrid.solve("ring+coulomb", "0.3", TILTED, friction="1", velocity=("3", "1"), n_eval=11)
+    assert [p.kind for p in sol.phases] == ["sliding", "rolling"] and sol.phases[0].ended == "sticks"
+    assert sol.energy_plus_work_drift_in_eps <= 64
+    e = np.array([float(v) for v in sol.energy])
+    assert e[sol.phase_index == 1][-1] < e[0] - 1e3 * 64 * 2.0 ** -52 * sol.energy_scale  # friction did work
