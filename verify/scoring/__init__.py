@@ -3,15 +3,15 @@
 * :mod:`.forms` -- the documented forms of a run (Euler angles; rotation matrix or quaternion
   with the centre of mass and the angular velocity) and the exact conversion between them;
 * :mod:`.runs` -- reading a run from CSV or JSON;
-* :mod:`.scoring` -- digits of agreement per component, energy drift, constraint drift, a verdict.
+* :mod:`.agreement` -- digits of agreement per component, energy drift, constraint drift, a verdict.
 
->>> from verify.score import score
+>>> from verify import score
 >>> s = score("my_run.csv", "disk-standard-1")      # doctest: +SKIP
 >>> s.min_digits, s.components["psi"].median_digits, s.energy_rel_drift, s.verdict   # doctest: +SKIP
 """
 from .forms import BODIES_ON_PLANE, FORMS
 from .runs import InvalidRun, read_run
-from .scoring import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, score
+from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, score
 
 __all__ = ["BODIES_ON_PLANE", "DIGITS_RESOLVED", "FORMS", "START_TOLERANCE", "ComponentScore", "InvalidRun", "Score",
            "read_run", "score"]

@@ -144,7 +144,7 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
     ----------
     run : path or mapping
         A CSV or JSON file, or a mapping of column names to sequences, in one of the forms of
-        :mod:`verify.score.forms` (Euler angles; rotation matrix or quaternion with the centre
+        :mod:`verify.scoring.forms` (Euler angles; rotation matrix or quaternion with the centre
         of mass's position and velocity and the inertial angular velocity).
     case : str
         A reference case (``reports/reference/index.json``).
@@ -183,27 +183,27 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
 
     ref, source = _reference(record, t)
     scales = _scales(ref)
-    for n in STATE_NAMES:
-        start = float(record["initial_state"][n])
-        err = _difference(n, state[n][0], start) / scales[n][0]
-        if not err <= start_tolerance:
-            raise InvalidRun(f"the start does not match case {case}: {n}(0) = {state[n][0]!r}, the case's {start!r} "
-                             f"(off by {err:.1e} of its scale {scales[n][0]:.4g}, more than {start_tolerance:g})")
     height = speed = defect = None
     if form != "euler":
         defect_t = rotation_defect(R, columns)
         height_t, speed_t = contact_point(model, columns, state, w, params)
         if not defect_t[0] <= start_tolerance:
             raise InvalidRun(f"the orientation at t = 0 is not a rotation (defect {defect_t[0]:.1e}: a reflection, "
-                             f"a left-handed frame or unnormalised entries)")
+                             f"a left-handed frame, unnormalised entries, or R and q that disagree)")
         for what, value, scale in (("height of the contact point", height_t[0], 1.0),
                                    ("velocity of the contact point", speed_t[0], scales["phidot"][0])):
             if not abs(value) <= start_tolerance * scale:
                 raise InvalidRun(f"a constraint is violated at t = 0: {what} {value:.3e}, more than {start_tolerance:g} "
                                  f"x {scale:.4g} (the frame must have Z up, the plane at z = 0 and C's position and "
-                                 f"velocity; see verify.score.forms)")
+                                 f"velocity; see verify.scoring.forms)")
         height, speed, defect = (float(np.max(np.abs(height_t))), float(np.max(speed_t)), float(np.max(defect_t)))
 
+    for n in STATE_NAMES:
+        start = float(record["initial_state"][n])
+        err = abs(_difference(n, state[n][0], start)) / scales[n][0]
+        if not err <= start_tolerance:
+            raise InvalidRun(f"the start does not match case {case}: {n}(0) = {state[n][0]!r}, the case's {start!r} "
+                             f"(off by {err:.1e} of its scale {scales[n][0]:.4g}, more than {start_tolerance:g})")
     digits, components = {}, {}
     for n in STATE_NAMES:
         rel = np.abs(_difference(n, state[n], ref[n])) / scales[n][0]
@@ -248,19 +248,40 @@ def _scales(ref: dict) -> dict:
 
 
 def _reference(record: dict, t: np.ndarray) -> tuple:
-    """(the reference's state at the run's times as float arrays, where it came from)."""
+    """(the reference's state at the run's times as float arrays, where it came from).
+
+    phi and psi are reduced modulo 2 pi at 40 digits before they are rounded to doubles: a
+    continuous angle of 10^3 rad holds only 13 digits after the point in a double, so reducing
+    the double would cost a run that reports its angles in (-pi, pi] the digits it has.
+    """
+    import mpmath
+
     index = {float(s): j for j, s in enumerate(record["grid"])}
     if all(float(v) in index for v in t):
         rows = [index[float(v)] for v in t]
-        return {n: np.array([float(record["state"][n]["value"][j]) for j in rows]) for n in STATE_NAMES}, "stored grid"
-    from ..engine.single import solve
+        exact = {n: [record["state"][n]["value"][j] for j in rows] for n in STATE_NAMES}
+        source = "stored grid"
+    else:
+        from ..engine.single import solve
+        from ..precision import parse_precision
 
-    params = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}
-    times = [exact_decimal(float(v)) for v in t]
-    sol = solve(record["model"]["name"], times[-1], record["initial_state"], params, precision="quad", t_eval=times)
-    if sol.outcome != "ok" or len(sol.t) != len(t):
-        raise RuntimeError(f"the quad re-integration of {record['name']} stopped early: {sol.outcome}")
-    return {n: np.array([float(v) for v in sol.y[i]]) for i, n in enumerate(STATE_NAMES)}, "quad re-integration"
+        quad = parse_precision("quad")
+        params = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}
+        times = [exact_decimal(float(v)) for v in t]
+        sol = solve(record["model"]["name"], times[-1], record["initial_state"], params, precision=quad, t_eval=times)
+        if sol.outcome != "ok" or len(sol.t) != len(t):
+            raise RuntimeError(f"the quad re-integration of {record['name']} stopped early: {sol.outcome}")
+        exact = {n: [quad.to_mpf(v) for v in sol.y[i]] for i, n in enumerate(STATE_NAMES)}
+        source = "quad re-integration"
+    out = {}
+    with mpmath.workdps(40):
+        turn = 2 * mpmath.pi
+        for n in STATE_NAMES:
+            values = [mpmath.mpf(v) for v in exact[n]]
+            if n in WRAPPED:
+                values = [v - turn * mpmath.nint(v / turn) for v in values]
+            out[n] = np.array([float(v) for v in values])
+    return out, source
 
 
 def _energy(model: str):

@@ -49,7 +49,9 @@ QUATERNION = ("qw", "qx", "qy", "qz")
 MOTION = ("x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz")
 MATRIX = ("t",) + MATRIX_ENTRIES + MOTION
 QUATERNION_FORM = ("t",) + QUATERNION + MOTION
-FORMS = {"euler": EULER, "matrix": MATRIX, "quaternion": QUATERNION_FORM}
+BOTH = ("t",) + MATRIX_ENTRIES + QUATERNION + MOTION
+#: the rotation given both ways (as ``reference --export`` writes it): R is read, q must agree at t = 0
+FORMS = {"euler": EULER, "matrix": MATRIX, "quaternion": QUATERNION_FORM, "matrix+quaternion": BOTH}
 
 
 def _contact_geometry():
@@ -155,7 +157,7 @@ def matrix_from_quaternion(qw, qx, qy, qz) -> np.ndarray:
 
 def b_to_euler(columns: dict) -> tuple:
     """(form (a) as a dict of arrays, R of shape (3, 3, n), omega of shape (3, n)) from form (b)'s columns."""
-    if "qw" in columns:
+    if "R11" not in columns:
         R = matrix_from_quaternion(*(columns[c] for c in QUATERNION))
     else:
         R = np.array([[columns[f"R{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)])
@@ -209,9 +211,17 @@ def contact_point(model: str, columns: dict, state: dict, w: np.ndarray, params:
 
 
 def rotation_defect(R: np.ndarray, columns: dict) -> np.ndarray:
-    """How far the run's orientation is from a rotation: max |R^T R - I| entry, or | |q| - 1 |."""
+    """How far the run's orientation is from a rotation: max |R^T R - I| entry and |det R - 1|, or
+    | |q| - 1 |; with both given, also the largest entry of R(q) - R."""
+    norm = None
     if "qw" in columns:
-        return np.abs(np.sqrt(sum(np.asarray(columns[c], float) ** 2 for c in QUATERNION)) - 1)
+        norm = np.abs(np.sqrt(sum(np.asarray(columns[c], float) ** 2 for c in QUATERNION)) - 1)
+        if "R11" not in columns:
+            return norm
     gram = np.einsum("kin,kjn->ijn", R, R) - np.eye(3)[:, :, None]
     det = np.linalg.det(np.moveaxis(R, 2, 0))
-    return np.maximum(np.abs(gram).max(axis=(0, 1)), np.abs(det - 1))
+    defect = np.maximum(np.abs(gram).max(axis=(0, 1)), np.abs(det - 1))
+    if norm is not None:  # both given: they must be the same rotation
+        other = matrix_from_quaternion(*(columns[c] for c in QUATERNION))
+        defect = np.maximum(defect, np.maximum(norm, np.abs(other - R).max(axis=(0, 1))))
+    return defect
