@@ -95,7 +95,7 @@ def test_form_b_is_the_papers_frame_independently():
     for _ in range(3):
         values = dict(zip(STATE, rng.uniform(-3, 3, 8)))
         values[STATE[0]] = rng.uniform(0.2, 3.0)
-        num = lambda e: float(sp.N(e.subs(values)))  # noqa: E731
+        num = lambda e, values=values: float(sp.N(e.subs(values)))  # noqa: E731
         assert [num(v) for v in R[:, 2]] == pytest.approx([num(v) for v in e3], abs=1e-13)
         assert [num(v) for v in R[:, 0]] == pytest.approx(
             [num(sp.cos(STATE[2]) * a + sp.sin(STATE[2]) * b) for a, b in zip(e1, e2)], abs=1e-13)
