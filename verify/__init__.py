@@ -14,4 +14,12 @@ this run 3.0e-35 = 0.16 eps: the disk's |E| is 0.006 of its term scale).
 from .engine.single import IntegrationError, InvariantTrace, Trajectory, solve
 from .precision import Precision, parse_precision
 
-__all__ = ["IntegrationError", "InvariantTrace", "Precision", "Trajectory", "parse_precision", "solve"]
+
+def score(run, case, **options):
+    """Score another simulator's run against a reference case: :func:`verify.scoring.agreement.score` (a :class:`Score`)."""
+    from .scoring.agreement import score as _score
+
+    return _score(run, case, **options)
+
+
+__all__ = ["IntegrationError", "InvariantTrace", "Precision", "Trajectory", "parse_precision", "score", "solve"]

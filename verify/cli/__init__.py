@@ -1,4 +1,4 @@
-"""Command line: ``python -m verify {trajectory,models,threshold,spindown,reference,sweep,report,bench} ...``.
+"""Command line: ``python -m verify {trajectory,models,threshold,spindown,reference,score,sweep,report,bench} ...``.
 
 Exit statuses: 0 done; 1 a failed integration (or a run the integrator does not mark ``ok`` or
 ``event:...``), a study that found no root, or an unexpected error; 2 bad input; 130 interrupted

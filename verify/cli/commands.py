@@ -1,4 +1,4 @@
-"""The commands: ``trajectory``, ``models``, ``threshold``, ``spindown``, ``reference``, ``sweep``, ``report``, ``bench``; each
+"""The commands: ``trajectory``, ``models``, ``threshold``, ``spindown``, ``reference``, ``score``, ``sweep``, ``report``, ``bench``; each
 reads its arguments, runs, and hands its output to the session."""
 from __future__ import annotations
 
@@ -197,7 +197,21 @@ def cmd_reference(args, session: Session) -> int:
 
     directory = Path(args.dir) if args.dir else reference.DIRECTORY
     say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
+    if args.export is None and args.format == "csv":
+        raise UsageError("--format csv is for --export; --check prints text or json")
     try:
+        if args.export is not None:
+            if args.format not in ("csv", "json"):
+                raise UsageError(f"--export needs --format csv or json (got {args.format or 'none'})")
+            if args.precision is not None or args.case:
+                raise UsageError("--export writes every case; --precision and --case are for --check and --make")
+            from ..reference.export import export_set
+
+            written = export_set(Path(args.export), args.format, directory)
+            if args.format == "json":
+                session.emit(_dumps({"written": [str(p) for p in written]}))
+            say(f"wrote {len(written)} file(s) to {args.export}")
+            return 0
         if args.make:
             if args.precision is not None:
                 raise UsageError("--precision is for --check; --make always runs mp:128 and mp:256")
@@ -214,6 +228,21 @@ def cmd_reference(args, session: Session) -> int:
     failed = [c.case for c in checks if not c.ok]
     if failed:
         raise RunFailed(f"{len(failed)} case(s) out of bound: {', '.join(failed)}")
+    return 0
+
+
+def cmd_score(args, session: Session) -> int:
+    from pathlib import Path
+
+    from ..reference import DIRECTORY
+    from ..scoring import START_TOLERANCE, score
+
+    tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-6"))
+    try:
+        result = score(args.run_file, args.case, directory=Path(args.dir) if args.dir else DIRECTORY, start_tolerance=tol)
+    except ValueError as err:  # InvalidRun and an unknown case: bad input
+        raise UsageError(str(err)) from None
+    session.emit(_dumps(result.to_record()) if args.format == "json" else result.table())
     return 0
 
 

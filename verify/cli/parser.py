@@ -7,11 +7,11 @@ from models import ALL_NAMES, COULOMB_NAMES
 from models.symbols import STATE_NAMES
 
 from .arguments import MP_MIN_BITS, N_EVAL_MAX, UsageError
-from .commands import (cmd_bench, cmd_models, cmd_reference, cmd_report, cmd_spindown, cmd_sweep, cmd_threshold,
-                       cmd_trajectory)
+from .commands import (cmd_bench, cmd_models, cmd_reference, cmd_report, cmd_score, cmd_spindown, cmd_sweep,
+                       cmd_threshold, cmd_trajectory)
 
 #: --help's first line
-DESCRIPTION = "Command line: ``python -m verify {trajectory,models,threshold,spindown,reference,sweep,report,bench} ...``."
+DESCRIPTION = "Command line: ``python -m verify {trajectory,models,threshold,spindown,reference,score,sweep,report,bench} ...``."
 
 # --- the parser -------------------------------------------------------------------------------
 
@@ -75,12 +75,27 @@ def parser() -> argparse.ArgumentParser:
     job = ref.add_mutually_exclusive_group(required=True)
     job.add_argument("--make", action="store_true", help="compute the set at mp:128 and mp:256 (tens of minutes)")
     job.add_argument("--check", action="store_true", help="re-integrate every case and compare with the certified digits")
+    job.add_argument("--export", default=None, metavar="DIR",
+                     help="write every case to DIR in the Euler and the rotation-matrix forms, with a README "
+                          "(--format csv or json)")
     ref.add_argument("--precision", default=None, help="for --check: double (default), long or quad")
     ref.add_argument("--case", action="append", metavar="NAME", help="only this case (repeatable)")
     ref.add_argument("--jobs", default="2", help="for --make: processes (default 2)")
     ref.add_argument("--dir", default=None, help="the set's folder (default: reports/reference)")
-    ref.add_argument("--format", choices=("json", "text"), default="text")
+    ref.add_argument("--format", choices=("json", "text", "csv"), default=None,
+                     help="--check: text (default) or json; --export: csv or json")
     ref.set_defaults(run=cmd_reference)
+
+    sc = sub.add_parser("score", help="score another simulator's run of a reference case (digits, energy, constraints)")
+    sc.add_argument("run_file", metavar="RUN", help="a CSV or JSON file: t and the Euler state, or a rotation matrix/quaternion with the "
+                                "centre of mass's position and velocity and the angular velocity (verify.scoring.forms)")
+    sc.add_argument("--case", required=True, help="the reference case (reports/reference/index.json)")
+    sc.add_argument("--dir", default=None, help="the reference set's folder (default: reports/reference)")
+    sc.add_argument("--start-tol", default=None,
+                    help="how closely the start must match the case, as a fraction of each component's scale "
+                         "(default 1e-6)")
+    sc.add_argument("--format", choices=("json", "text"), default="text")
+    sc.set_defaults(run=cmd_score)
 
     sw = sub.add_parser("sweep", help="run (or resume) a parameter sweep described by a TOML file")
     sw.add_argument("spec", help="the sweep's TOML file (e.g. verify/sweep/specs/disk-diameter-spin.toml)")

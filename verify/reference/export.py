@@ -1,0 +1,163 @@
+"""Every reference case in plain files, in the suite's Euler form and in a rotation-matrix form.
+
+``python -m verify reference --export DIR --format csv|json`` writes, per case,
+
+* ``<case>.euler.csv``: ``t, theta, phi, psi, thetadot, phidot, psidot, x, y`` (form (a));
+* ``<case>.matrix.csv``: ``t, R11..R33, qw, qx, qy, qz, x, y, z, vx, vy, vz, wx, wy, wz``
+  (form (b), :mod:`verify.scoring.forms`; bodies on the plane only);
+
+or one ``<case>.json`` holding both (columns as lists of decimal strings) with the case's
+initial state, parameters and conventions; and ``README.md`` spelling out every case's start,
+parameters and the conventions.  Form (a) is the stored certified decimals as they are; form
+(b) is computed from them at 50 digits and written with 30 significant digits (every stored
+value is certified to 31 digits or more at t_end, fewer only where it passes near 0, where
+its absolute error bound, ``abs_error`` in the case file, is still below 1e-30).  Everything
+is computed before anything is written; each file is replaced atomically.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+from pathlib import Path
+
+import mpmath
+
+from models.symbols import STATE_NAMES
+
+from ..provenance import write_atomic
+from ..scoring.forms import CONTACT, MOTION, MATRIX_ENTRIES, QUATERNION, euler_to_b
+from .store import CONVENTIONS, DIRECTORY, load_set
+
+EXPORT_FORMATS = ("csv", "json")
+DIGITS_B = 30
+B_COLUMNS = ("t",) + MATRIX_ENTRIES + QUATERNION + MOTION
+
+
+def form_b_columns(record: dict) -> dict:
+    """Form (b) of a case's stored grid as decimal strings (``DIGITS_B`` significant digits), or {}."""
+    model = record["model"]["name"]
+    if model not in CONTACT:
+        return {}
+    with mpmath.workdps(50):
+        params = {k: mpmath.mpf(v["exact"].split("/")[0]) / (mpmath.mpf(v["exact"].split("/")[1])
+                                                              if "/" in v["exact"] else 1)
+                  for k, v in record["model"]["parameters"].items()}
+        cols = {c: [] for c in B_COLUMNS}
+        cols["t"] = list(record["grid"])
+        for j in range(len(record["grid"])):
+            state = {n: mpmath.mpf(record["state"][n]["value"][j]) for n in STATE_NAMES}
+            b = euler_to_b(model, state, params, module="mpmath")
+            for c in B_COLUMNS[1:]:
+                cols[c].append(_decimal(b[c]))
+    return cols
+
+
+def _decimal(v) -> str:
+    v = mpmath.mpf(v)
+    return "0" if v == 0 else mpmath.nstr(v, DIGITS_B, strip_zeros=False, min_fixed=-4, max_fixed=6)
+
+
+def euler_columns(record: dict) -> dict:
+    return {"t": list(record["grid"]), **{n: list(record["state"][n]["value"]) for n in STATE_NAMES}}
+
+
+def _csv(columns: dict) -> str:
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    names = list(columns)
+    w.writerow(names)
+    for row in zip(*(columns[n] for n in names)):
+        w.writerow(row)
+    return out.getvalue()
+
+
+def case_setup(record: dict) -> dict:
+    """What a user needs to set the case up in another tool."""
+    return {"name": record["name"], "description": record["description"], "source": record["source"],
+            "model": record["model"]["name"], "title": record["model"]["title"], "t_end": record["t_end"],
+            "initial_state": record["initial_state"],
+            "parameters": {k: {"exact": v["exact"], "decimal": v["decimal"], "description": v["description"]}
+                           for k, v in record["model"]["parameters"].items()}}
+
+
+def export_set(directory: Path, fmt: str, source: Path = DIRECTORY) -> list:
+    """Write every case of the set at ``source`` to ``directory`` in ``fmt``; returns the paths written."""
+    if fmt not in EXPORT_FORMATS:
+        raise ValueError(f"--format {fmt!r}; allowed: {', '.join(EXPORT_FORMATS)}")
+    directory = Path(directory)
+    if directory.exists() and not directory.is_dir():
+        raise ValueError(f"{directory} exists and is not a folder")
+    files = {}
+    setups = []
+    for record in load_set(source):
+        euler, matrix = euler_columns(record), form_b_columns(record)
+        setup = case_setup(record)
+        setups.append((setup, bool(matrix)))
+        if fmt == "csv":
+            files[f"{record['name']}.euler.csv"] = _csv(euler)
+            if matrix:
+                files[f"{record['name']}.matrix.csv"] = _csv(matrix)
+        else:
+            files[f"{record['name']}.json"] = json.dumps(
+                {"format": "rolling-verify reference case, export 1", **setup, "conventions": CONVENTIONS,
+                 "forms": _forms_text(), "euler": euler, "matrix": matrix or None}, indent=1) + "\n"
+    files["README.md"] = readme(setups, fmt)
+    for name, text in files.items():
+        write_atomic(directory / name, text)
+    return [directory / n for n in files]
+
+
+def _forms_text() -> dict:
+    return {"euler": "t, " + ", ".join(STATE_NAMES) + ": the stored certified decimals (form (a))",
+            "matrix": ", ".join(B_COLUMNS) + f": form (b), from form (a) at 50 digits, {DIGITS_B} significant digits; "
+                      "R = Rz(phi) Rx(theta) Rz(psi) body to inertial (column 3 the symmetry axis e3), q = "
+                      "qz(phi) qx(theta) qz(psi) scalar first, (x, y, z) and (vx, vy, vz) the centre of mass, "
+                      "(wx, wy, wz) the angular velocity in inertial components; Z up, the plane at z = 0"}
+
+
+def readme(setups: list, fmt: str) -> str:
+    def files(name, has_b):
+        if fmt == "json":
+            return f"`{name}.json`"
+        return f"`{name}.euler.csv`" + (f", `{name}.matrix.csv`" if has_b else "")
+
+    blocks = []
+    for s, has_b in setups:
+        start = ", ".join(f"{n} = {v}" for n, v in s["initial_state"].items())
+        params = ", ".join(f"{k} = {v['exact']}" for k, v in s["parameters"].items())
+        blocks.append(f"### `{s['name']}`\n\n{s['description']} ({s['source']}). Model `{s['model']}` ({s['title']}); "
+                      f"t from 0 to {s['t_end']} s. Files: {files(s['name'], has_b)}.\n\n"
+                      f"* initial state: {start}\n* parameters (exact): {params}\n")
+    conventions = "\n".join(f"* **{k}**: {v}" for k, v in CONVENTIONS.items())
+    return f"""# The reference cases, exported
+
+Written by `python -m verify reference --export DIR --format {fmt}` from `reports/reference/` (see its
+README for how the values are certified). Score your own run of a case with
+`python -m verify score RUN --case NAME` (RUN a CSV or JSON file in either form below).
+
+## Forms
+
+* **(a) Euler** (`*.euler.csv`, key `euler`): `t, {', '.join(STATE_NAMES)}`, the stored certified
+  decimals unchanged.
+* **(b) matrix** (`*.matrix.csv`, key `matrix`): `{', '.join(B_COLUMNS)}`.
+  R maps body to inertial components, R = Rz(phi) Rx(theta) Rz(psi), so its third column is the
+  symmetry axis e3 and Rij is row i, column j; q = qz(phi) qx(theta) qz(psi) (scalar first) is the same
+  rotation; (x, y, z) is the centre of mass C (Z up, the plane at z = 0), (vx, vy, vz) its velocity,
+  (wx, wy, wz) the angular velocity in inertial components. Computed from (a) at 50 digits and
+  written with {DIGITS_B} significant digits. `score` reads a run with the nine Rij, the four q, or
+  both (then R is used and q must be the same rotation at t = 0), with the other nine columns.
+  Defined for the bodies on the plane (disk, ring, hurricane balls, smooth-plane disk); the
+  gyroscope (fixed pivot) and the effective model (psi = phi imposed) are given in form (a) only.
+
+Back from (b) to (a): theta = atan2(hypot(R13, R23), R33), phi = atan2(R13, -R23),
+psi = atan2(R31, R32), thetadot = w . e1, phidot = (w . e2) / sin theta,
+psidot = w . e3 - phidot cos theta (phi, psi modulo 2 pi).
+
+## Conventions
+
+{conventions}
+
+## Cases
+
+{chr(10).join(blocks)}"""

@@ -1,0 +1,17 @@
+"""Scoring another simulator against the reference set (``python -m verify score RUN --case NAME``).
+
+* :mod:`.forms` -- the documented forms of a run (Euler angles; rotation matrix or quaternion
+  with the centre of mass and the angular velocity) and the exact conversion between them;
+* :mod:`.runs` -- reading a run from CSV or JSON;
+* :mod:`.agreement` -- digits of agreement per component, energy drift, constraint drift, a verdict.
+
+>>> from verify import score
+>>> s = score("my_run.csv", "disk-standard-1")      # doctest: +SKIP
+>>> s.min_digits, s.components["psi"].median_digits, s.energy_rel_drift, s.verdict   # doctest: +SKIP
+"""
+from .forms import BODIES_ON_PLANE, FORMS
+from .runs import InvalidRun, read_run
+from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, score
+
+__all__ = ["BODIES_ON_PLANE", "DIGITS_RESOLVED", "FORMS", "START_TOLERANCE", "ComponentScore", "InvalidRun", "Score",
+           "read_run", "score"]

@@ -1,0 +1,292 @@
+"""Score another simulator's run of a reference case: digits of agreement, energy, constraints.
+
+Digits of agreement of component y at time t are ``-log10(|y_run - y_ref| / scale)``, with
+
+* angles theta, phi, psi: scale pi, phi and psi compared modulo 2 pi (the difference is
+  reduced to [-pi, pi]): 0 digits is the worst possible disagreement of an angle, and a tool
+  that reports angles in (-pi, pi] scores as one that keeps them continuous;
+* rates thetadot, phidot, psidot: one scale, the largest |rate| of the reference over the
+  run's times (a per-component scale would make thetadot of a steady motion, exactly 0,
+  infinitely demanding);
+* positions x, y: the largest horizontal distance of C from the origin over the run's times,
+  and at least 1 (lengths are in units of R, or a: a body that stays near its start is judged
+  against its own size).
+
+A double holds a value to about 16 digits; an error below one unit roundoff of the scale
+(2^-53) is shown as ``DIGITS_RESOLVED`` = 15.95 digits, the most a run of doubles can score.
+
+The reference at the run's times is the stored certified grid where every time of the run
+is a grid time, otherwise the case re-integrated by this suite in quad precision (113 bits,
+its own epsilon) at exactly the run's times (``verify.reference --check`` bounds that run's
+error at 10^-27 or below on every case, far beyond a double).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+import sympy as sp
+
+from models import get_model
+from models.symbols import STATE, STATE_NAMES
+
+from ..reference.store import DIRECTORY, load_set
+from .forms import CONTACT, b_to_euler, contact_point, rotation_defect
+from .runs import InvalidRun, exact_decimal, read_run
+
+DIGITS_RESOLVED = -math.log10(2.0 ** -53)
+#: A start (and, for form (b), the constraints and the rotation at t = 0) must agree with the
+#: case to this fraction of each component's scale: a tool in single precision (7 digits)
+#: meets it; a start in other units, another frame or from another case does not.
+START_TOLERANCE = 1e-6
+ANGLES = ("theta", "phi", "psi")
+WRAPPED = ("phi", "psi")
+RATES = ("thetadot", "phidot", "psidot")
+
+
+@dataclass(frozen=True)
+class ComponentScore:
+    """Digits of agreement of one state component over the run's times."""
+
+    name: str
+    min_digits: float
+    t_min: float  # the time of the fewest digits
+    median_digits: float
+    final_digits: float
+    scale: float
+    scale_is: str
+
+    def to_record(self) -> dict:
+        return {"min_digits": round(self.min_digits, 2), "t_min": self.t_min,
+                "median_digits": round(self.median_digits, 2), "final_digits": round(self.final_digits, 2),
+                "scale": self.scale, "scale_is": self.scale_is}
+
+
+@dataclass(frozen=True)
+class Score:
+    """The score of one run against one reference case (scipy-style named result).
+
+    Attributes
+    ----------
+    case, model, form : str
+        The case, its model, and the run's form ('euler', 'matrix' or 'quaternion').
+    t : ndarray
+        The run's times.
+    reference_source : str
+        'stored grid' or 'quad re-integration'.
+    digits : dict of ndarray
+        Digits of agreement of every state component at every time (see the module).
+    components : dict of ComponentScore
+    min_digits : float
+        The fewest digits of any component at any time; ``worst`` names where.
+    energy_rel_drift : float
+        max |E(t) - E(t0)| / |E(t0)| of the run's own states (E from the model's expression, in double).
+    contact_height, contact_velocity : float or None
+        max |z of the contact point| (length unit) and max |velocity the constraint sets to 0|
+        (length unit per second) along the run; None for form (a), which holds them by construction.
+    rotation_defect : float or None
+        max over the run of |R^T R - I| and |det R - 1| (matrix) or | |q| - 1 | (quaternion).
+    verdict : str
+        One line.
+    """
+
+    case: str
+    model: str
+    form: str
+    t: np.ndarray
+    reference_source: str
+    digits: dict
+    components: dict
+    min_digits: float
+    worst: str
+    energy_rel_drift: float
+    contact_height: Optional[float]
+    contact_velocity: Optional[float]
+    rotation_defect: Optional[float]
+    verdict: str = field(default="")
+
+    def to_record(self) -> dict:
+        def num(v):
+            return None if v is None else float(f"{v:.3e}")
+
+        return {"case": self.case, "model": self.model, "form": self.form, "points": int(len(self.t)),
+                "t_first": float(self.t[0]), "t_last": float(self.t[-1]), "reference_source": self.reference_source,
+                "min_digits": round(self.min_digits, 2), "worst": self.worst,
+                "components": {n: c.to_record() for n, c in self.components.items()},
+                "energy_rel_drift": num(self.energy_rel_drift), "contact_height": num(self.contact_height),
+                "contact_velocity": num(self.contact_velocity), "rotation_defect": num(self.rotation_defect),
+                "verdict": self.verdict}
+
+    def table(self) -> str:
+        lines = [f"case {self.case} ({self.model}), run in form {self.form}, {len(self.t)} times from "
+                 f"{self.t[0]:g} to {self.t[-1]:g} s; reference: {self.reference_source}",
+                 f"{'component':<10} {'min digits':>10} {'at t':>10} {'median':>7} {'final':>7}  scale"]
+        for c in self.components.values():
+            lines.append(f"{c.name:<10} {c.min_digits:>10.2f} {c.t_min:>10.4g} {c.median_digits:>7.2f} "
+                         f"{c.final_digits:>7.2f}  {c.scale:.4g} ({c.scale_is})")
+        lines.append(f"energy drift max |E - E(t0)| / |E(t0)|: {self.energy_rel_drift:.2e}")
+        if self.contact_height is None:
+            lines.append("constraints: held by construction in form (a) (not measurable)")
+        else:
+            lines.append(f"contact height max |z_P|: {self.contact_height:.2e}; contact velocity max: "
+                         f"{self.contact_velocity:.2e}; rotation defect: {self.rotation_defect:.2e}")
+        lines.append(self.verdict)
+        return "\n".join(lines)
+
+
+def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float = START_TOLERANCE) -> Score:
+    """Score a run of another simulator against the reference case ``case``.
+
+    Parameters
+    ----------
+    run : path or mapping
+        A CSV or JSON file, or a mapping of column names to sequences, in one of the forms of
+        :mod:`verify.scoring.forms` (Euler angles; rotation matrix or quaternion with the centre
+        of mass's position and velocity and the inertial angular velocity).
+    case : str
+        A reference case (``reports/reference/index.json``).
+    directory : path
+        The reference set (default ``reports/reference``).
+    start_tolerance : float
+        How closely the run's start must match the case, as a fraction of each component's
+        scale (default :data:`START_TOLERANCE`).
+
+    Raises
+    ------
+    InvalidRun
+        Bad or inconsistent input, named: unreadable file, wrong columns, times not increasing,
+        not from 0 or beyond the case's end, a start that is not the case's, a rotation that is
+        not one or a constraint violated at t = 0.
+    ValueError
+        An unknown case.
+    """
+    (record,) = load_set(directory, [case])
+    model = record["model"]["name"]
+    form, columns = read_run(run)
+    t = columns["t"]
+    if t[0] != 0:
+        raise InvalidRun(f"the run starts at t = {t[0]!r}; case {case} starts at t = 0")
+    if t[-1] > float(record["t_end"]):
+        raise InvalidRun(f"the run goes to t = {t[-1]!r}, beyond case {case}'s t_end = {record['t_end']}")
+    params = {k: float(v["decimal"]) for k, v in record["model"]["parameters"].items()}
+    R = w = None
+    if form == "euler":
+        state = {n: columns[n] for n in STATE_NAMES}
+    else:
+        if model not in CONTACT:
+            raise InvalidRun(f"form {form} is defined for the bodies on the plane ({', '.join(CONTACT)}); "
+                             f"case {case} is a {model} run: give it in form euler")
+        state, R, w = b_to_euler(columns)
+
+    ref, source = _reference(record, t)
+    scales = _scales(ref)
+    height = speed = defect = None
+    if form != "euler":
+        defect_t = rotation_defect(R, columns)
+        height_t, speed_t = contact_point(model, columns, state, w, params)
+        if not defect_t[0] <= start_tolerance:
+            raise InvalidRun(f"the orientation at t = 0 is not a rotation (defect {defect_t[0]:.1e}: a reflection, "
+                             f"a left-handed frame, unnormalised entries, or R and q that disagree)")
+        for what, value, scale in (("height of the contact point", height_t[0], 1.0),
+                                   ("velocity of the contact point", speed_t[0], scales["phidot"][0])):
+            if not abs(value) <= start_tolerance * scale:
+                raise InvalidRun(f"a constraint is violated at t = 0: {what} {value:.3e}, more than {start_tolerance:g} "
+                                 f"x {scale:.4g} (the frame must have Z up, the plane at z = 0 and C's position and "
+                                 f"velocity; see verify.scoring.forms)")
+        height, speed, defect = (float(np.max(np.abs(height_t))), float(np.max(speed_t)), float(np.max(defect_t)))
+
+    for n in STATE_NAMES:
+        start = float(record["initial_state"][n])
+        err = abs(_difference(n, state[n][0], start)) / scales[n][0]
+        if not err <= start_tolerance:
+            raise InvalidRun(f"the start does not match case {case}: {n}(0) = {state[n][0]!r}, the case's {start!r} "
+                             f"(off by {err:.1e} of its scale {scales[n][0]:.4g}, more than {start_tolerance:g})")
+    digits, components = {}, {}
+    for n in STATE_NAMES:
+        rel = np.abs(_difference(n, state[n], ref[n])) / scales[n][0]
+        d = -np.log10(np.maximum(rel, 2.0 ** -53))
+        digits[n] = d
+        j = int(np.argmin(d))
+        components[n] = ComponentScore(n, float(d[j]), float(t[j]), float(np.median(d)), float(d[-1]), *scales[n])
+    worst = min(components.values(), key=lambda c: c.min_digits)
+    energy = _energy(model)(*[state[n] for n in STATE_NAMES], *[params[p.name] for p in get_model(model).parameters])
+    energy = np.broadcast_to(energy, t.shape)
+    drift = float(np.max(np.abs(energy - energy[0])) / abs(energy[0]))
+    result = Score(case, model, form, t, source, digits, components, worst.min_digits,
+                   f"{worst.name} at t = {worst.t_min:g}", drift, height, speed, defect)
+    return _with_verdict(result)
+
+
+def _with_verdict(s: Score) -> Score:
+    from dataclasses import replace
+
+    constraints = ("constraints held by construction (form euler)" if s.contact_height is None else
+                   f"contact height {s.contact_height:.1e}, contact velocity {s.contact_velocity:.1e}")
+    shown = f">= {DIGITS_RESOLVED:.2f} (a double's resolution)" if s.min_digits >= DIGITS_RESOLVED else f"{s.min_digits:.1f}"
+    line = (f"verdict: agrees with {s.case} to {shown} digits over t in [{s.t[0]:g}, {s.t[-1]:g}] "
+            f"(fewest: {s.worst}); energy drift {s.energy_rel_drift:.1e}; {constraints}")
+    return replace(s, verdict=line)
+
+
+def _difference(name: str, a, b):
+    d = np.asarray(a, float) - np.asarray(b, float)
+    if name in WRAPPED:
+        d = np.remainder(d + np.pi, 2 * np.pi) - np.pi
+    return d
+
+
+def _scales(ref: dict) -> dict:
+    rate = max(float(np.max(np.abs(ref[n]))) for n in RATES)
+    length = max(1.0, float(np.max(np.hypot(ref["x"], ref["y"]))))
+    out = {n: (math.pi, "pi") for n in ANGLES}
+    out.update({n: (rate, "largest |rate| of the reference") for n in RATES})
+    out.update({n: (length, "largest horizontal distance of C from the origin, at least 1") for n in ("x", "y")})
+    return out
+
+
+def _reference(record: dict, t: np.ndarray) -> tuple:
+    """(the reference's state at the run's times as float arrays, where it came from).
+
+    phi and psi are reduced modulo 2 pi at 40 digits before they are rounded to doubles: a
+    continuous angle of 10^3 rad holds only 13 digits after the point in a double, so reducing
+    the double would cost a run that reports its angles in (-pi, pi] the digits it has.
+    """
+    import mpmath
+
+    index = {float(s): j for j, s in enumerate(record["grid"])}
+    if all(float(v) in index for v in t):
+        rows = [index[float(v)] for v in t]
+        exact = {n: [record["state"][n]["value"][j] for j in rows] for n in STATE_NAMES}
+        source = "stored grid"
+    else:
+        from ..engine.single import solve
+        from ..precision import parse_precision
+
+        quad = parse_precision("quad")
+        params = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}
+        times = [exact_decimal(float(v)) for v in t]
+        sol = solve(record["model"]["name"], times[-1], record["initial_state"], params, precision=quad, t_eval=times)
+        if sol.outcome != "ok" or len(sol.t) != len(t):
+            raise RuntimeError(f"the quad re-integration of {record['name']} stopped early: {sol.outcome}")
+        exact = {n: [quad.to_mpf(v) for v in sol.y[i]] for i, n in enumerate(STATE_NAMES)}
+        source = "quad re-integration"
+    out = {}
+    with mpmath.workdps(40):
+        turn = 2 * mpmath.pi
+        for n in STATE_NAMES:
+            values = [mpmath.mpf(v) for v in exact[n]]
+            if n in WRAPPED:
+                values = [v - turn * mpmath.nint(v / turn) for v in values]
+            out[n] = np.array([float(v) for v in values])
+    return out, source
+
+
+def _energy(model: str):
+    return _ENERGY.setdefault(model, sp.lambdify(list(STATE) + [p.symbol for p in get_model(model).parameters],
+                                                 get_model(model).energy, "numpy"))
+
+
+_ENERGY: dict = {}
