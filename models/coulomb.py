@@ -47,6 +47,7 @@ from functools import lru_cache
 import sympy as sp
 
 from .base import Parameter
+from .rolling import _simplify, newton_euler
 from .symbols import (
     ACCELERATIONS, STATE, g, omega_body, omega_body_dot, omega_frame, phi, phidot, theta,
     time_derivative, vertical_in_frame,
@@ -97,10 +98,6 @@ class SlidingPhase:
     cm_velocity_xy: tuple
 
 
-def _simplify(expr):
-    return sp.factor_terms(sp.cancel(sp.together(expr)))
-
-
 @lru_cache(maxsize=None)
 def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> SlidingPhase:
     """The sliding phase of a body of revolution with r_P = (0, r2(theta), r3(theta)) (paper Eqs. 5-7)."""
@@ -118,11 +115,7 @@ def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> Slidin
     e_slip = sp.Matrix([cb, sb * sp.cos(theta), -sb * sp.sin(theta)])
     normal = g + zddot  # N / M
     force = normal * Z - mu * normal * e_slip  # F / M
-    rows = (inertia * wdot + Om.cross(inertia * w) - r.cross(force)).applyfunc(sp.expand)
-    solution = sp.solve(list(rows), list(ACCELERATIONS), dict=True)
-    if len(solution) != 1:
-        raise RuntimeError("the sliding Newton-Euler rows did not give unique accelerations")
-    acc = tuple(_simplify(solution[0][q]) for q in ACCELERATIONS)
+    _, acc = newton_euler(inertia, w, wdot, Om, r, force)
     on_shell = dict(zip(ACCELERATIONS, acc))
 
     # omega x r_P: its vertical part is -z_C' (the contact stays on the plane), its horizontal part

@@ -55,6 +55,17 @@ def _simplify(expr):
     return sp.factor_terms(sp.cancel(sp.together(expr)))
 
 
+def newton_euler(inertia, w, wdot, Om, r, force) -> tuple:
+    """(rows, accelerations): paper Eq. 5 about C, I omega_dot + Omega x (I omega) = r_P x F, in 1-2-3
+    components (LHS - RHS, expanded), solved for (thetaddot, phiddot, psiddot); ``force`` is F / M with
+    the accelerations left as symbols wherever the contact law puts them."""
+    rows = (inertia * wdot + Om.cross(inertia * w) - r.cross(force)).applyfunc(sp.expand)
+    solution = sp.solve(list(rows), list(ACCELERATIONS), dict=True)
+    if len(solution) != 1:
+        raise RuntimeError("the Newton-Euler rows did not give unique accelerations")
+    return rows, tuple(_simplify(solution[0][q]) for q in ACCELERATIONS)
+
+
 @lru_cache(maxsize=None)
 def derive(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr, contact: str = "rolling") -> Derivation:
     """Derive the equations of motion of a body of revolution on the plane.
@@ -84,12 +95,7 @@ def derive(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr, contact: str = "r
         v = time_derivative(height) * Z
         a = time_derivative(time_derivative(height)) * Z
     force = a + g * Z  # F / M
-    rows = (inertia * wdot + Om.cross(inertia * w) - r.cross(force)).applyfunc(sp.expand)
-
-    solution = sp.solve(list(rows), list(ACCELERATIONS), dict=True)
-    if len(solution) != 1:
-        raise RuntimeError("the Newton-Euler rows did not give unique accelerations")
-    acc = tuple(_simplify(solution[0][q]) for q in ACCELERATIONS)
+    rows, acc = newton_euler(inertia, w, wdot, Om, r, force)
     on_shell = dict(zip(ACCELERATIONS, acc))
 
     kinetic = sp.Rational(1, 2) * (w.dot(inertia * w) + v.dot(v))

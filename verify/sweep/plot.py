@@ -108,13 +108,7 @@ def render(spec: SweepSpec, rows: list, title: str = None) -> bytes:
                 norm = LogNorm(vmin=positive.min(), vmax=positive.max())
         mesh = ax.pcolormesh(X, Y, np.ma.masked_invalid(Z), shading="nearest", norm=norm, cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=quantity)
-        for name, axis_set in ((x, ax.set_xscale), (y, ax.set_yscale)):
-            if next(a.scale for a in spec.axes if a.name == name) == "log":
-                axis_set("log")
-        ax.set_xlabel(x)
-        ax.set_ylabel(y)
-        if panels:
-            ax.set_title(f"{panels} = {pv:.4g}", fontsize=9)
+        _dress(ax, spec, x, y, panels, pv)
     head = title or plot.get("title") or f"{spec.name}: {quantity}"
     if averaged:
         head += f" (mean over {', '.join(averaged)})"
@@ -162,13 +156,7 @@ def render_categories(spec: SweepSpec, rows: list, quantity: str, title: str = N
             counts[label] += 1
             Z[yi[r[f"in_{y}"]], xi[r[f"in_{x}"]]] = code[label]
         ax.pcolormesh(xs, ys, np.ma.masked_invalid(Z), shading="nearest", cmap=cmap, norm=norm)
-        for name, axis_set in ((x, ax.set_xscale), (y, ax.set_yscale)):
-            if next(a.scale for a in spec.axes if a.name == name) == "log":
-                axis_set("log")
-        ax.set_xlabel(x)
-        ax.set_ylabel(y)
-        if panels:
-            ax.set_title(f"{panels} = {pv:.4g}", fontsize=9)
+        _dress(ax, spec, x, y, panels, pv)
     handles = [Patch(facecolor=palette[code[c]], edgecolor="0.5", label=f"{c} ({counts[c]})") for c in cats]
     fig.legend(handles=handles, loc="outside lower center", ncols=2 if len(values) > 1 else 1, fontsize=9,
                title=f"{quantity}: runs per category")
@@ -177,3 +165,14 @@ def render_categories(spec: SweepSpec, rows: list, quantity: str, title: str = N
     fig.savefig(buf, format="png", dpi=100, metadata={"Software": None})
     plt.close(fig)
     return buf.getvalue()
+
+
+def _dress(ax, spec, x: str, y: str, panels, value) -> None:
+    """Axis scales (log where the spec's axis is), labels, and the panel's title."""
+    for name, axis_set in ((x, ax.set_xscale), (y, ax.set_yscale)):
+        if next(a.scale for a in spec.axes if a.name == name) == "log":
+            axis_set("log")
+    ax.set_xlabel(x)
+    ax.set_ylabel(y)
+    if panels:
+        ax.set_title(f"{panels} = {value:.4g}", fontsize=9)
