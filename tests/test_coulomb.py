@@ -108,7 +108,7 @@ def _tilted(precision):
                         n_eval=51)
 
 
-@pytest.mark.parametrize("precision", ["double", "long", "quad", "mp:128"])
+@pytest.mark.parametrize("precision", ["double", "long", "quad", pytest.param("mp:128", marks=pytest.mark.slow)])
 def test_energy_balance_through_a_stick(precision):
     """E + W = E(0) throughout, E constant while rolling, non-increasing while sliding.
 
