@@ -5,7 +5,7 @@ local package index, no network), so no number from this script appears anywhere
 repository.  It is written against Exudyn's documented Python API (``mbs.CreateRigidBody``,
 ``ObjectJointRollingDisc``, body sensors); check it against your Exudyn version.
 
-Mapping of conventions (verify.scoring.forms, models/symbols.py):
+Mapping of conventions (verify.frames, models/symbols.py):
 
 * Units: lengths in R (R = 1), mass m = 1, g = 980 (g/R in s^-2, R = 1 cm), time in s.
   The thin disk of the case has I1 = k m R^2, I3 = 2k m R^2 with k = 1/4 (a uniform disk).
@@ -16,7 +16,7 @@ Mapping of conventions (verify.scoring.forms, models/symbols.py):
 * Start: C at (x0, y0, sin theta0) (the contact point is C - e2, at z = 0); the initial
   angular velocity in global components is omega = thetadot e1 + phidot sin(theta) e2 +
   (phidot cos(theta) + psidot) e3; C's velocity is -omega x r_P with r_P = -e2 (no slip).
-  Both come from ``verify.scoring.forms.euler_to_b`` so that the mapping is the tested one.
+  Both come from ``verify.frames.euler_to_b`` so that the mapping is the tested one.
 * Output: the run is written in form (b), ``t, R11..R33, x, y, z, vx, vy, vz, wx, wy, wz``
   (global angular velocity), and scored; R is read back to (theta, phi, psi) exactly and
   phi, psi are compared modulo 2 pi.
@@ -39,7 +39,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
 from verify.reference.store import DIRECTORY  # noqa: E402
-from verify.scoring.forms import MATRIX_ENTRIES, euler_to_b  # noqa: E402
+from verify.frames import MATRIX_ENTRIES, euler_to_b  # noqa: E402
 
 
 def run_exudyn(record: dict, steps: int, solver: str) -> dict:

@@ -18,7 +18,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score, solve  # noqa: E402
 from verify.reference.store import DIRECTORY  # noqa: E402
-from verify.scoring.forms import QUATERNION, euler_to_b  # noqa: E402
+from verify.frames import QUATERNION, euler_to_b  # noqa: E402
 
 CASE = "disk-standard-1"
 

@@ -28,7 +28,7 @@ from models.dissipative import (LAW_NAMES, c, couple, dissipative_disk, law, mof
 from models.rolling import derive
 from models.symbols import ACCELERATIONS, g, omega_body, theta, thetadot, time_derivative
 from verify import solve
-from verify.report import style
+from verify import style
 from verify.report.study_figures import draw_dissipation, render_dissipation
 from verify.studies import dissipation as D
 from verify.studies.spindown import spindown

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 from verify.claims.base import FigureData, RunData
-from verify.report import retrograde, style
+from verify import style
+from verify.report import retrograde
 from verify.report.figures import Image, draw, render, with_alt_text
 from verify.report.study_figures import draw_map, render_map
 from verify.studies import maps

@@ -217,7 +217,7 @@ def test_a_changed_number_changes_the_section(committed):
 def test_figure_rows_run_the_figure_even_after_its_claims_were_evaluated_in_this_process():
     """The report's pool runs several jobs in one worker: a figure's claims may have been evaluated (and
     cached) by the claims' job before the friction job asks for the figure's runs."""
-    from verify.studies.friction import figure_claims, figure_rows
+    from verify.report.figure_friction import figure_claims, figure_rows
 
     for claim in figure_claims(2):
         claim.evaluate()

@@ -16,7 +16,7 @@ from models import get_model
 from models.symbols import STATE, STATE_NAMES, frame_vectors, omega_body, phidot, psidot, thetadot, to_inertial
 from verify.reference.store import DIRECTORY, load_set
 from verify.scoring import InvalidRun, score
-from verify.scoring.forms import QUATERNION, euler_to_b, from_euler_expressions, rotation_matrix
+from verify.frames import QUATERNION, euler_to_b, from_euler_expressions, rotation_matrix
 from verify.scoring.agreement import _reference, _scales
 
 CASE = "disk-standard-1"
@@ -105,7 +105,7 @@ def test_form_b_is_the_papers_frame_independently():
         assert [num(exprs["vx"]), num(exprs["vy"]), num(exprs["vz"])] == pytest.approx([num(c) for c in v], abs=1e-12)
         assert [num(c) for c in model.velocity_xy] == pytest.approx([num(v[0]), num(v[1])], abs=1e-12)
         qw, qx, qy, qz = (num(exprs[c]) for c in QUATERNION)
-        from verify.scoring.forms import matrix_from_quaternion
+        from verify.frames import matrix_from_quaternion
 
         Rq = matrix_from_quaternion(*(np.array([c]) for c in (qw, qx, qy, qz)))[:, :, 0]
         assert Rq == pytest.approx(np.array([[num(c) for c in row] for row in R.tolist()]), abs=1e-13)

@@ -88,7 +88,7 @@ def parser() -> argparse.ArgumentParser:
 
     sc = sub.add_parser("score", help="score another simulator's run of a reference case (digits, energy, constraints)")
     sc.add_argument("run_file", metavar="RUN", help="a CSV or JSON file: t and the Euler state, or a rotation matrix/quaternion with the "
-                                "centre of mass's position and velocity and the angular velocity (verify.scoring.forms)")
+                                "centre of mass's position and velocity and the angular velocity (verify.frames)")
     sc.add_argument("--case", required=True, help="the reference case (reports/reference/index.json)")
     sc.add_argument("--dir", default=None, help="the reference set's folder (default: reports/reference)")
     sc.add_argument("--start-tol", default=None,

@@ -4,7 +4,7 @@
 
 * ``<case>.euler.csv``: ``t, theta, phi, psi, thetadot, phidot, psidot, x, y`` (form (a));
 * ``<case>.matrix.csv``: ``t, R11..R33, qw, qx, qy, qz, x, y, z, vx, vy, vz, wx, wy, wz``
-  (form (b), :mod:`verify.scoring.forms`; bodies on the plane only);
+  (form (b), :mod:`verify.frames`; bodies on the plane only);
 
 or one ``<case>.json`` holding both (columns as lists of decimal strings) with the case's
 initial state, parameters and conventions; and ``README.md`` spelling out every case's start,
@@ -26,7 +26,7 @@ import mpmath
 from models.symbols import STATE_NAMES
 
 from ..provenance import write_atomic
-from ..scoring.forms import CONTACT, MOTION, MATRIX_ENTRIES, QUATERNION, euler_to_b
+from ..frames import CONTACT, MOTION, MATRIX_ENTRIES, QUATERNION, euler_to_b
 from .store import CONVENTIONS, DIRECTORY, load_set
 
 EXPORT_FORMATS = ("csv", "json")

@@ -17,8 +17,8 @@ import matplotlib
 import numpy as np
 
 from ..claims.base import FigureData
-from . import style
-from .style import plt, png_bytes
+from .. import style
+from ..style import plt, png_bytes
 
 #: the time series of a caption's figure: (RunData attribute, axis label, unit)
 SERIES = (("theta", r"$\theta$ / rad", "rad"), ("phi", r"$\phi$ / rad", "rad"),

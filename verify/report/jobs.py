@@ -82,10 +82,11 @@ def friction_jobs() -> list:
     families, and per dissipation law the slip on the quasi-steady drift and in the damped run (one job:
     the run's slip event is switched on near the drift's slip times)."""
     from models.dissipative import LAW_NAMES
-    from ..studies.friction import figure_numbers
+    from .figure_friction import figure_numbers
 
     study = ("verify.studies.friction",)
-    jobs = [Job(f"friction/figures/fig-{n}", "friction_figure_job", (n,), study) for n in figure_numbers()]
+    jobs = [Job(f"friction/figures/fig-{n}", "friction_figure_job", (n,), ("verify.report.figure_friction",))
+            for n in figure_numbers()]
     jobs += [Job("friction/reference", "friction_reference_job", (), study),
              Job("friction/steady", "friction_steady_job", (), study)]
     jobs += [Job(f"friction/slip/{law}", "friction_slip_job", (law,), study) for law in LAW_NAMES]
@@ -204,7 +205,7 @@ def reference_job(precision: str, names: list) -> JobOutput:
 
 
 def friction_figure_job(figure: int) -> JobOutput:
-    from ..studies.friction import figure_rows
+    from .figure_friction import figure_rows
 
     return JobOutput(figure_rows(figure))
 

@@ -11,9 +11,9 @@ import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 
-from . import style
+from .. import style
 from .figures import Image
-from .style import png_bytes
+from ..style import png_bytes
 
 #: the cells of a yes/no map: (code, colour, legend text); NaN cells are told apart by whether
 #: the run had windows to read (verify/sweep/engine.py, senses: every value is NaN without them)

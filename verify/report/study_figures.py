@@ -19,9 +19,9 @@ from models.steady import RATE_NAMES
 
 from ..studies.dissipation import LawStudy, secants
 from ..studies.maps import GROWTH, StabilityMap
-from . import style
+from .. import style
 from .figures import Image
-from .style import png_bytes
+from ..style import png_bytes
 
 
 def render_map(smap: StabilityMap) -> Image:

@@ -9,7 +9,7 @@
 >>> s = score("my_run.csv", "disk-standard-1")      # doctest: +SKIP
 >>> s.min_digits, s.components["psi"].median_digits, s.energy_rel_drift, s.verdict   # doctest: +SKIP
 """
-from .forms import BODIES_ON_PLANE, FORMS
+from ..frames import BODIES_ON_PLANE, FORMS
 from .runs import InvalidRun, read_run
 from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, score
 

@@ -34,7 +34,7 @@ from models import get_model
 from models.symbols import STATE, STATE_NAMES
 
 from ..reference.store import DIRECTORY, load_set
-from .forms import CONTACT, b_to_euler, contact_point, rotation_defect
+from ..frames import CONTACT, b_to_euler, contact_point, rotation_defect
 from .runs import InvalidRun, exact_decimal, read_run
 
 DIGITS_RESOLVED = -math.log10(2.0 ** -53)
@@ -144,7 +144,7 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
     ----------
     run : path or mapping
         A CSV or JSON file, or a mapping of column names to sequences, in one of the forms of
-        :mod:`verify.scoring.forms` (Euler angles; rotation matrix or quaternion with the centre
+        :mod:`verify.frames` (Euler angles; rotation matrix or quaternion with the centre
         of mass's position and velocity and the inertial angular velocity).
     case : str
         A reference case (``reports/reference/index.json``).
@@ -195,7 +195,7 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
             if not abs(value) <= start_tolerance * scale:
                 raise InvalidRun(f"a constraint is violated at t = 0: {what} {value:.3e}, more than {start_tolerance:g} "
                                  f"x {scale:.4g} (the frame must have Z up, the plane at z = 0 and C's position and "
-                                 f"velocity; see verify.scoring.forms)")
+                                 f"velocity; see verify.frames)")
         height, speed, defect = (float(np.max(np.abs(height_t))), float(np.max(speed_t)), float(np.max(defect_t)))
 
     for n in STATE_NAMES:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .forms import detect
+from ..frames import detect
 
 
 class InvalidRun(ValueError):

@@ -7,7 +7,7 @@ value).  Axes not drawn are averaged over (the title says so).  Points a run did
 
 A yes/no quantity (:data:`verify.sweep.spec.YES_NO`: ``slipped``, the retrograde turn, ...) and
 ``outcome`` (how each run ended) are categories, not numbers: they are drawn one run a cell in
-the report's yes/no colours (:mod:`verify.report.style`), with a legend that names each category
+the report's yes/no colours (:mod:`verify.style`), with a legend that names each category
 and counts its runs (:func:`categories`), never on a colour bar nor averaged over an axis.
 """
 from __future__ import annotations
@@ -42,8 +42,8 @@ def grid_of(spec: SweepSpec, rows: list, quantity: str, x: str, y: str, panel_va
 
 
 def _category_colours() -> tuple:
-    """The cells' colours in category order: yes, no, then the others (verify.report.style's roles)."""
-    from ..report import style
+    """The cells' colours in category order: yes, no, then the others (verify.style's roles)."""
+    from .. import style
 
     return (style.YES, style.NO, style.UNDECIDED, style.TOO_SHORT, style.RUN, style.PREDICTED, style.EDGE)
 
