@@ -139,7 +139,9 @@ def _step(field, y, h: Fraction, order: int, remainder_bits: int):
     rem = [c[order] for c in taylor_coefficients(field, box, order)]
     scale = max(1.0, max(abs(float(b.mid())) for b in y))
     bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
-    if not math.isfinite(bound) or bound > scale * 2.0 ** -remainder_bits:
+    # no point in a remainder far below the balls' own radius (wrapping has already set the width)
+    target = max(scale * 2.0 ** -remainder_bits, max(float(b.rad()) for b in y) / 16)
+    if not math.isfinite(bound) or bound > target:
         raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
     new = []
     for c, r in zip(coeffs, rem):
@@ -148,7 +150,7 @@ def _step(field, y, h: Fraction, order: int, remainder_bits: int):
             acc = acc * ha + c[k]
         new.append(acc)
     # next step: where the remainder would reach the target, from this step's bound (order n)
-    grow = (scale * 2.0 ** -remainder_bits / max(bound, 1e-300)) ** (1.0 / order)
+    grow = (target / max(bound, 1e-300)) ** (1.0 / order)
     return new, float(h) * min(2.0, max(0.5, 0.9 * grow))
 
 
