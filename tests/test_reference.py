@@ -1,4 +1,4 @@
-"""The reference set: certified digits, the committed files, the double check and its negative controls.
+"""The reference set: agreeing digits, the committed files, the double check and its negative controls.
 
 The committed set (reports/reference/, written only by ``python -m verify reference --make``)
 is read, never written, here; anything written goes to a temporary folder.
@@ -20,19 +20,19 @@ from verify.engine.single import solve
 from verify.precision import parse_precision
 from verify.reference import DIRECTORY, check_case, check_set, load_set
 from verify.reference.cases import cases
-from verify.reference.certify import certify
+from verify.reference.agreement import agree
 from verify.reference.store import read_index
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
-# --- certification (synthetic values) ---------------------------------------------------------
+# --- agreeing digits (synthetic values) ---------------------------------------------------------
 
-def test_certified_digits_are_the_agreeing_ones():
+def test_stored_digits_are_the_agreeing_ones():
     with mpmath.workprec(300):
         high = mpmath.mpf("1.23456789012345678901234567890123456789")
         low = high + mpmath.mpf("3e-25")
-        c = certify(low, high, 128, 256)
+        c = agree(low, high, 128, 256)
     # 25 digits: rounding moves the value by 3.2e-25, the runs differ by 3e-25, together 6.2e-25, within
     # one unit (1e-24) of the 25th digit; at 26 digits the same sum would exceed the unit 1e-25
     assert c.digits == 25 and c.text == "1.234567890123456789012346"
@@ -41,14 +41,14 @@ def test_certified_digits_are_the_agreeing_ones():
         assert abs(mpmath.mpf(mpmath.nstr(high, 26)) - high) + abs(low - high) > mpmath.mpf("1e-25")
 
 
-def test_certification_caps_at_the_lower_precision_and_handles_zero_and_carry():
+def test_agreement_caps_at_the_lower_precision_and_handles_zero_and_carry():
     with mpmath.workprec(300):
         same = mpmath.mpf(1) / 3
-        assert certify(same, same, 128, 256).digits == math.floor(128 * math.log10(2))  # 38
-        assert certify(mpmath.mpf(0), mpmath.mpf(0), 128, 256).digits is None
-        tiny = certify(mpmath.mpf("1e-30"), mpmath.mpf("-1e-30"), 128, 256)  # sign not even certain
+        assert agree(same, same, 128, 256).digits == math.floor(128 * math.log10(2))  # 38
+        assert agree(mpmath.mpf(0), mpmath.mpf(0), 128, 256).digits is None
+        tiny = agree(mpmath.mpf("1e-30"), mpmath.mpf("-1e-30"), 128, 256)  # sign not even certain
         assert tiny.digits == 0 and mpmath.mpf(tiny.abs_error) >= mpmath.mpf("2e-30")
-        carry = certify(mpmath.mpf("9.9996"), mpmath.mpf("9.99996"), 128, 256)
+        carry = agree(mpmath.mpf("9.9996"), mpmath.mpf("9.99996"), 128, 256)
         assert mpmath.mpf(carry.text) == 10 and abs(mpmath.mpf(carry.text) - mpmath.mpf("9.99996")) + \
             mpmath.mpf("0.00036") <= mpmath.mpf(carry.abs_error)
 
@@ -72,9 +72,9 @@ def test_the_set_covers_every_model_both_kinds_and_1_to_100_seconds(records):
     assert [r["name"] for r in records] == [c.name for c in cases()]  # the set is the case list, in order
 
 
-def test_at_least_30_certified_digits_at_the_final_time_up_to_10_seconds(records):
+def test_at_least_30_agreeing_digits_at_the_final_time_up_to_10_seconds(records):
     """Every component of every case of at most 10 s, except those whose exact value is 0 (thetadot of
-    a steady motion, x and y of a model whose centre of mass stays put): those are certified as 0
+    a steady motion, x and y of a model whose centre of mass stays put): those are agreed as 0
     to within abs_error, which must then be below 1e-30."""
     from verify.reference.store import final_summary
 
@@ -82,12 +82,12 @@ def test_at_least_30_certified_digits_at_the_final_time_up_to_10_seconds(records
         if float(r["t_end"]) > 10:
             continue
         s = final_summary(r)
-        assert s["min_digits_final"] >= 30, f"{r['name']}: {s['min_digits_final']} certified digits at t_end"
+        assert s["min_digits_final"] >= 30, f"{r['name']}: {s['min_digits_final']} agreeing digits at t_end"
         assert all(float(e) < 1e-30 for e in s["zero_within_final"].values()), (r["name"], s["zero_within_final"])
 
 
 def test_every_stored_value_is_within_its_bound_of_a_third_precision(records):
-    """Independent of the certification: disk-standard-1 at 192 bits (neither of the two runs)
+    """Independent of the agreement: disk-standard-1 at 192 bits (neither of the two runs)
     must lie within abs_error of every stored value (its own error, ~1e-55, is negligible)."""
     r = next(r for r in records if r["name"] == "disk-standard-1")
     sol = solve("disk", r["t_end"], r["initial_state"], precision="mp:192", t_eval=r["grid"])

@@ -1,6 +1,6 @@
 """Scoring another simulator's run against the reference set (verify.score, verify.scoring) and the export.
 
-The runs here are synthetic: the stored certified trajectory, perturbed by a known amount,
+The runs here are synthetic: the stored reference trajectory, perturbed by a known amount,
 converted to the rotation-matrix form, wrapped modulo 2 pi, or put in a wrong frame.
 """
 from __future__ import annotations

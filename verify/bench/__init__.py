@@ -25,7 +25,7 @@ targets (:data:`TARGETS`) are printed beside the ratios.
   bootstrap interval and the per-start exponents' median and quartiles.
 * **heyoka's own modes** on the benchmark grid (loop, batch lanes, ensembles; full and reduced
   system; looser tolerances): what the engines can build on.
-* **Work against precision.**  The final state of a reference case (certified digits, see
+* **Work against precision.**  The final state of a reference case (agreeing digits, see
   :mod:`verify.reference`) by heyoka at double (several tolerances), long, quad and MPFR, by
   scipy's ``solve_ivp`` (DOP853, Radau, LSODA; right-hand side and Jacobian compiled by heyoka's
   ``cfunc``, so only the integrator differs), and by mpmath's ``odefun`` on a short run.

@@ -26,7 +26,7 @@ def render_work_precision(r: dict) -> bytes:
             continue
         pts.sort(key=lambda a: a["seconds"])
         ax.loglog([a["seconds"] for a in pts], [max(a["error"], floor) for a in pts], "o-", label=mname)
-    ax.axhline(floor, color="grey", ls=":", lw=1, label="reference's certified accuracy")
+    ax.axhline(floor, color="grey", ls=":", lw=1, label="reference's agreed accuracy")
     ax.set_xlabel("wall time (s)")
     ax.set_ylabel("final-state error (relative, max norm)")
     ax.set_title(f"work against precision: {wp['case']}, t = {wp['t_end']} s")

@@ -209,7 +209,7 @@ def _md_work_precision(r: dict) -> list:
     lines = [
         "## Work against precision",
         "",
-        f"Final state of the reference case `{wp['case']}` at t = {wp['t_end']} s against its certified digits",
+        f"Final state of the reference case `{wp['case']}` at t = {wp['t_end']} s against its agreeing digits",
         f"(error = max |y_i - ref_i| / max |ref_i|; the reference itself is good to {wp['reference_floor']:.1e}).",
         "heyoka runs bare (compiled system, no events); scipy gets the right-hand side and the Jacobian compiled by",
         "heyoka's cfunc. Time is the best of repeated runs where a run is short.",

@@ -1,4 +1,4 @@
-"""Work against precision: the final state of a certified reference case by heyoka at every precision,
+"""Work against precision: the final state of a reference case (agreeing digits) by heyoka at every precision,
 scipy's solve_ivp and mpmath's odefun, error against time."""
 from __future__ import annotations
 
@@ -43,7 +43,7 @@ class Attempt:
 
 
 class ReferenceProblem:
-    """A reference case as an initial-value problem, with its certified values on the grid."""
+    """A reference case as an initial-value problem, with its agreed values on the grid."""
 
     def __init__(self, name: str):
         from ..reference import load_set

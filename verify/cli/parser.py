@@ -74,7 +74,7 @@ def parser() -> argparse.ArgumentParser:
     ref = sub.add_parser("reference", help="make or check the reference trajectories (reports/reference/)")
     job = ref.add_mutually_exclusive_group(required=True)
     job.add_argument("--make", action="store_true", help="compute the set at mp:128 and mp:256 (tens of minutes)")
-    job.add_argument("--check", action="store_true", help="re-integrate every case and compare with the certified digits")
+    job.add_argument("--check", action="store_true", help="re-integrate every case and compare with the agreeing digits")
     job.add_argument("--export", default=None, metavar="DIR",
                      help="write every case to DIR in the Euler and the rotation-matrix forms, with a README "
                           "(--format csv or json)")

@@ -1,8 +1,8 @@
-"""High-accuracy reference trajectories with certified digits (``reports/reference/``).
+"""High-accuracy reference trajectories with agreeing digits (``reports/reference/``).
 
 * :mod:`.cases` -- which runs (every model, quiet and wild, 1 to 100 s, the paper's figures);
 * :mod:`.make` -- two MPFR runs per case, the equations' fingerprint, the conditioning;
-* :mod:`.certify` -- the digits two precisions agree on;
+* :mod:`.agreement` -- the digits two precisions agree on (agreement, not proof);
 * :mod:`.store` -- the JSON format, the index and the README;
 * :mod:`.check` -- re-integrate at double, long or quad and compare within the argued bound.
 

@@ -1,4 +1,4 @@
-"""Re-integrate a reference case at a working precision and measure it against the certified digits.
+"""Re-integrate a reference case at a working precision and measure it against the agreeing digits.
 
 The expected error of a run at epsilon ``eps`` after N Taylor steps, for component y_i at
 time t, is bounded to first order by

@@ -8,9 +8,9 @@
 
 or one ``<case>.json`` holding both (columns as lists of decimal strings) with the case's
 initial state, parameters and conventions; and ``README.md`` spelling out every case's start,
-parameters and the conventions.  Form (a) is the stored certified decimals as they are; form
+parameters and the conventions.  Form (a) is the stored decimals (agreeing digits) as they are; form
 (b) is computed from them at 50 digits and written with 30 significant digits (every stored
-value is certified to 31 digits or more at t_end, fewer only where it passes near 0, where
+value has 31 agreeing digits or more at t_end, fewer only where it passes near 0, where
 its absolute error bound, ``abs_error`` in the case file, is still below 1e-30).  Everything
 is computed before anything is written; each file is replaced atomically.
 """
@@ -109,7 +109,7 @@ def export_set(directory: Path, fmt: str, source: Path = DIRECTORY) -> list:
 
 
 def _forms_text() -> dict:
-    return {"euler": "t, " + ", ".join(STATE_NAMES) + ": the stored certified decimals (form (a))",
+    return {"euler": "t, " + ", ".join(STATE_NAMES) + ": the stored decimals (agreeing digits) (form (a))",
             "matrix": ", ".join(B_COLUMNS) + f": form (b), from form (a) at 50 digits, {DIGITS_B} significant digits; "
                       "R = Rz(phi) Rx(theta) Rz(psi) body to inertial (column 3 the symmetry axis e3), q = "
                       "qz(phi) qx(theta) qz(psi) scalar first, (x, y, z) and (vx, vy, vz) the centre of mass, "
@@ -133,12 +133,12 @@ def readme(setups: list, fmt: str) -> str:
     return f"""# The reference cases, exported
 
 Written by `python -m verify reference --export DIR --format {fmt}` from `reports/reference/` (see its
-README for how the values are certified). Score your own run of a case with
+README for how far the values are agreed). Score your own run of a case with
 `python -m verify score RUN --case NAME` (RUN a CSV or JSON file in either form below).
 
 ## Forms
 
-* **(a) Euler** (`*.euler.csv`, key `euler`): `t, {', '.join(STATE_NAMES)}`, the stored certified
+* **(a) Euler** (`*.euler.csv`, key `euler`): `t, {', '.join(STATE_NAMES)}`, the stored (agreeing-digit)
   decimals unchanged.
 * **(b) matrix** (`*.matrix.csv`, key `matrix`): `{', '.join(B_COLUMNS)}`.
   R maps body to inertial components, R = Rz(phi) Rx(theta) Rz(psi), so its third column is the

@@ -1,9 +1,9 @@
-"""Compute a reference case: two MPFR runs, certified digits, invariants, conditioning.
+"""Compute a reference case: two MPFR runs, their agreeing digits, invariants, conditioning.
 
 ``python -m verify reference --make`` runs every case of :mod:`verify.reference.cases` at
-``LOW`` and ``HIGH`` bits (processes in parallel, one case-precision per task), certifies
-each value of the state and of every invariant on the output grid
-(:mod:`verify.reference.certify`), measures the conditioning of the flow with the
+``LOW`` and ``HIGH`` bits (processes in parallel, one case-precision per task), keeps the
+agreeing digits of each value of the state and of every invariant on the output grid
+(:mod:`verify.reference.agreement`), measures the conditioning of the flow with the
 variational equations (:func:`verify.engine.conditioning.sensitivities`), and writes one JSON file
 per case with :mod:`verify.reference.store`.
 """
@@ -24,7 +24,7 @@ from ..engine.conditioning import sensitivities
 from ..engine.single import solve
 from ..precision import parse_precision
 from .cases import ReferenceCase, case
-from .certify import certify
+from .agreement import agree
 
 LOW, HIGH = "mp:128", "mp:256"
 FINGERPRINT_STATES = (
@@ -59,11 +59,11 @@ def run_case(name: str, precision: str) -> Run:
     return Run(name, p.name, sol.steps, sol.outcome, state, invariants)
 
 
-def certified_columns(low: dict, high: dict, low_bits: int, high_bits: int) -> dict:
+def agreed_columns(low: dict, high: dict, low_bits: int, high_bits: int) -> dict:
     """name -> {"value", "digits", "abs_error", "double"} columns from two runs' columns."""
     out = {}
     for name in high:
-        cells = [certify(_mp(a, high_bits), _mp(b, high_bits), low_bits, high_bits)
+        cells = [agree(_mp(a, high_bits), _mp(b, high_bits), low_bits, high_bits)
                  for a, b in zip(low[name], high[name])]
         out[name] = {"value": [c.text for c in cells], "digits": [c.digits for c in cells],
                      "abs_error": [c.abs_error for c in cells],

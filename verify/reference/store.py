@@ -1,16 +1,21 @@
 """The reference set on disk: one JSON file per case, an index, and a README.
 
 The format is plain JSON (readable without this package): every number that carries
-certified digits is a decimal string; a double-precision copy sits beside it for
+agreeing digits is a decimal string; a double-precision copy sits beside it for
 convenience.  ``FORMAT`` names the layout; a reader should refuse any other.
 
 A case file holds: the model (name, title, the source of its equations, a fingerprint of
 the equations, parameters as exact rationals and as decimals), the conventions, the exact
 initial state, the output grid, the two precisions and their step counts, and for every
 state component and every invariant the columns ``value`` (decimal strings rounded to their
-certified digits), ``digits`` (certified significant digits; null for a value that is 0 in
-both runs), ``abs_error`` (a bound on |value - exact|) and ``double``; then the conditioning
+agreeing digits), ``digits`` (significant digits on which the two runs agree; null for a value
+that is 0 in both runs), ``abs_error`` (the agreement's estimate of a bound on |value - exact|) and ``double``; then the conditioning
 (:func:`verify.reference.make.conditioning`) and the provenance (versions, sources' commit).
+
+Format 1 keeps the key names it was published with (``precisions.certified``, the index's
+``min_certified_digits_final`` and ``median_certified_digits_final``): readers outside this
+package, the committed files (pinned by their sha256) and the report's stored results use them.
+What they hold is agreement, not proof, and the record's own description says so.
 """
 from __future__ import annotations
 
@@ -26,7 +31,7 @@ from models.symbols import STATE_NAMES
 
 from ..provenance import source_commit, versions, write_atomic
 from .cases import ReferenceCase
-from .make import HIGH, LOW, Run, certified_columns, conditioning, equations_fingerprint, predicted_digits
+from .make import HIGH, LOW, Run, agreed_columns, conditioning, equations_fingerprint, predicted_digits
 
 FORMAT = "rolling-verify reference trajectory, format 1"
 INDEX_FORMAT = "rolling-verify reference set, format 1"
@@ -54,8 +59,8 @@ def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits:
     for p in model.parameters:
         exact = sp.Rational(c.params[p.name]) if p.name in c.params else sp.nsimplify(p.default)
         params[p.name] = {"exact": str(exact), "decimal": str(sp.N(exact, 40)), "description": p.description}
-    state = certified_columns(low.state, high.state, low_bits, high_bits)
-    invariants = certified_columns(low.invariants, high.invariants, low_bits, high_bits)
+    state = agreed_columns(low.state, high.state, low_bits, high_bits)
+    invariants = agreed_columns(low.invariants, high.invariants, low_bits, high_bits)
     return {
         "format": FORMAT,
         "name": c.name,
@@ -74,8 +79,9 @@ def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits:
         "grid": c.grid(),
         "precisions": {"low": low.precision, "high": high.precision, "tolerance": "each precision's epsilon",
                        "steps": {low.precision: low.steps, high.precision: high.steps},
-                       "certified": "value = the high run rounded to the digits on which it and the low run agree; "
-                                    "|value - exact| <= abs_error (one unit in the last digit)"},
+                       "certified": "agreeing digits, not proved (the key keeps its format-1 name): value = the high run "
+                                    "rounded to the digits on which it and the low run agree; abs_error = one unit in "
+                                    "the last agreeing digit, the agreement's estimate of a bound on |value - exact|"},
         "state": state,
         "invariants": invariants,
         "conditioning": conditioning(c),
@@ -84,7 +90,7 @@ def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits:
 
 
 def final_summary(record: dict) -> dict:
-    """Certified digits at the final time and what the conditioning predicts for them."""
+    """Agreeing digits at the final time and what the conditioning predicts for them."""
     low_bits = int(record["precisions"]["low"].split(":")[1])
     steps = record["precisions"]["steps"][record["precisions"]["low"]]
     scale = reduced_scale(record)
@@ -96,15 +102,15 @@ def final_summary(record: dict) -> dict:
                                                        col["double"][-1], low_bits), 1),
                    "row_sum": record["conditioning"]["state_row_sum"][n][-1]}
     # a component whose exact value is 0 (thetadot of a steady motion) has no significant digits:
-    # what is certified is that it is 0 to within abs_error; such values are listed apart
+    # what the runs agree on is that it is 0 to within abs_error; such values are listed apart
     zeros = {n: record["state"][n]["abs_error"][-1] for n in STATE_NAMES
              if rows[n]["digits"] is None or (rows[n]["digits"] == 0 and abs(record["state"][n]["double"][-1])
                                               <= float(record["state"][n]["abs_error"][-1]))}
-    certified = [r["digits"] for n, r in rows.items() if n not in zeros]
+    agreed = [r["digits"] for n, r in rows.items() if n not in zeros]
     weakest = min((n for n in rows if n not in zeros), key=lambda n: rows[n]["digits"], default=None)
-    return {"min_digits_final": min(certified) if certified else None,
+    return {"min_digits_final": min(agreed) if agreed else None,
             "weakest_component": weakest, "predicted_digits_weakest": rows[weakest]["predicted"] if weakest else None,
-            "median_digits_final": sorted(certified)[len(certified) // 2] if certified else None,
+            "median_digits_final": sorted(agreed)[len(agreed) // 2] if agreed else None,
             "zero_within_final": zeros,
             "max_row_sum_final": max(r["row_sum"] for r in rows.values()), "components": rows}
 
@@ -233,22 +239,24 @@ def readme(index: dict) -> str:
 Generated by `python -m verify reference --make` (do not edit by hand: `index.json` holds each file's
 sha256). Each case is integrated by heyoka's Taylor method on the equations derived from the vectors
 (`models/rolling.py`) twice, in MPFR at {index['precisions']['low'][3:]} and {index['precisions']['high'][3:]} bits, each at its own epsilon. A stored
-value is the {index['precisions']['high'][3:]}-bit result rounded to the significant digits on which the two runs agree, so it is
-within one unit of its last digit of the exact solution of the stated initial-value problem;
-`abs_error` states that bound for every value.
+value is the {index['precisions']['high'][3:]}-bit result rounded to the significant digits on which the two runs agree;
+`abs_error` is one unit in its last agreeing digit. These are *agreeing digits*, not proved ones: two
+runs of the same method can share an error, and `abs_error` is the agreement's estimate of a bound, not
+a proof. (Format 1 keeps its published key names, `precisions.certified` and the index's
+`min_certified_digits_final`: they hold agreeing digits. Proved enclosures are `verify/proof/`'s.)
 
-| case | model | kind | source | t_end (s) | grid points | certified digits at t_end: min | median | exactly 0, certified to | max row sum of the transition matrix at t_end |
+| case | model | kind | source | t_end (s) | grid points | agreeing digits at t_end: min | median | exactly 0, agreed to | max row sum of the transition matrix at t_end |
 |---|---|---|---|---:|---:|---:|---:|---|---:|
 {rows}
 
-Certified digits fall with the conditioning of the flow: a run at epsilon keeps about
+Agreeing digits fall with the conditioning of the flow: a run at epsilon keeps about
 -log10(eps sqrt(N) R Y / |y|) digits of a component y, with N the steps, R the row sum of the
 state-transition matrix (the `conditioning` block of each file, from heyoka's variational
 equations) and Y the largest rate. These flows are integrable, so R grows about linearly with
 time: runs of 10 s keep 30 digits or more, runs of 100 s lose one or two more; a value that
 happens to pass near zero keeps fewer *significant* digits for the same absolute error, and a
-component whose exact value is 0 (thetadot of a steady motion) has none: what is certified is
-that it is 0 to within its abs_error (the column 'exactly 0').
+component whose exact value is 0 (thetadot of a steady motion) has none: what the runs agree on
+is that it is 0 to within its abs_error (the column 'exactly 0').
 
 ## Reading a case without this package
 
@@ -259,7 +267,7 @@ from decimal import Decimal
 case = json.load(open("reports/reference/disk-fig3-lhs.json"))
 assert case["format"] == "{FORMAT}"
 t = [Decimal(s) for s in case["grid"]]                          # exact output times
-theta = [Decimal(s) for s in case["state"]["theta"]["value"]]   # certified decimals
+theta = [Decimal(s) for s in case["state"]["theta"]["value"]]   # agreeing decimals
 bound = [Decimal(s) for s in case["state"]["theta"]["abs_error"]]
 start = case["initial_state"]                                   # exact decimal strings
 params = {{k: v["exact"] for k, v in case["model"]["parameters"].items()}}  # exact rationals
@@ -269,13 +277,13 @@ params = {{k: v["exact"] for k, v in case["model"]["parameters"].items()}}  # ex
 
 With mpmath, `mpmath.mpf(s)` after `mpmath.mp.dps = 50`. Every file also carries the model's
 parameters (exact rationals and 40-digit decimals), the conventions (Euler angles, state order,
-units), the invariants at every grid point (certified the same way), the conditioning
+units), the invariants at every grid point (agreed the same way), the conditioning
 (`state_row_sum`, `parameter_term`), the step counts, and the versions and commit that made it.
 
 ## Checking an integrator
 
 `python -m verify reference --check [--precision double|long|quad]` re-integrates every case at
-that precision and prints, per case, the largest error against the certified values in units of
+that precision and prints, per case, the largest error against the agreed values in units of
 the bound eps (sqrt(N) R* Y + P + |y|) + abs_error, with R* the largest row sum up to that time and P the
 parameter term (`verify/reference/check.py` argues it): a ratio above 1 fails.
 """

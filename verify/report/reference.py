@@ -18,12 +18,12 @@ def render_markdown(index: dict, checks: dict) -> list:
         f"`reports/reference/` holds {len(index['cases'])} cases (every model; quiet and wild motions; 1 to 100 s; the "
         "paper's figure runs that stay in their model's domain), each integrated on the derived equations at "
         f"{index['precisions']['low']} and {index['precisions']['high']}; a stored value carries the digits the two runs "
-        "agree on and an abs_error bound (reports/reference/README.md). Certified digits at t_end: the fewest over the "
-        "eight state components (components whose exact value is 0 are certified zeros, not counted), and the median; "
+        "agree on and an abs_error estimate (reports/reference/README.md): agreement, not proof. Agreeing digits at t_end: the fewest over the "
+        "eight state components (components whose exact value is 0 are agreed zeros, not counted), and the median; "
         "'predicted' is -log10(eps_128 sqrt(N) R Y/|y|) for the component with the fewest, R its row sum of the "
         "state-transition matrix from the variational equations: a conservative estimate, as for the check bound.",
         "",
-        "| case | model | kind | source | t_end (s) | steps (128 bits) | certified digits at t_end: min (component) "
+        "| case | model | kind | source | t_end (s) | steps (128 bits) | agreeing digits at t_end: min (component) "
         "| predicted | median | max row sum at t_end |",
         "|---|---|---|---|---:|---:|---:|---:|---:|---:|",
     ]
@@ -35,12 +35,12 @@ def render_markdown(index: dict, checks: dict) -> list:
     short = [e["min_certified_digits_final"] for e in index["cases"] if float(e["t_end"]) <= 10]
     long_ = [(e["name"], e["min_certified_digits_final"], e["max_row_sum_final"]) for e in index["cases"]
              if float(e["t_end"]) >= 100]
-    lines += ["", f"Runs up to 10 s keep at least {min(short)} certified digits at t_end; at 100 s "
+    lines += ["", f"Runs up to 10 s keep at least {min(short)} agreeing digits at t_end; at 100 s "
                   + ", ".join(f"{n} keeps {d} (row sum {r:.2g})" for n, d, r in long_)
                   + ": the flows are integrable, so the transition matrix grows about linearly with time and "
                     "costs about one digit per decade of it.", "",
               "**`python -m verify reference --check`**: every case re-integrated by the suite at a working precision, "
-              "the largest error against the certified values in units of the bound eps (sqrt(N) R* Y + P + |y|) + "
+              "the largest error against the agreed values in units of the bound eps (sqrt(N) R* Y + P + |y|) + "
               "abs_error (verify/reference/check.py), and how much of that bound at the worst point is the reference's "
               "own uncertainty.", "",
               "| precision | cases | within bound | largest error / bound | at | median error / bound |",

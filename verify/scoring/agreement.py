@@ -15,7 +15,7 @@ Digits of agreement of component y at time t are ``-log10(|y_run - y_ref| / scal
 A double holds a value to about 16 digits; an error below one unit roundoff of the scale
 (2^-53) is shown as ``DIGITS_RESOLVED`` = 15.95 digits, the most a run of doubles can score.
 
-The reference at the run's times is the stored certified grid where every time of the run
+The reference at the run's times is the stored grid (agreeing digits) where every time of the run
 is a grid time, otherwise the case re-integrated by this suite in quad precision (113 bits,
 its own epsilon) at exactly the run's times (``verify.reference --check`` bounds that run's
 error at 10^-27 or below on every case, far beyond a double).

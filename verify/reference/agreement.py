@@ -1,17 +1,19 @@
-"""Certified digits: what two runs at different precisions agree on.
+"""Agreeing digits: what two runs at different precisions agree on (agreement, not a proof).
 
 A case is integrated twice, at a lower and a higher MPFR precision (128 and 256 bits by
 default).  The higher run's own error is smaller than the lower run's by about the ratio
-of their epsilons (2^-128 here), so ``|low - high|`` bounds the error of ``high`` with a
-wide margin, and a value is stored as ``high`` rounded to the largest number of
+of their epsilons (2^-128 here), so ``|low - high|`` estimates a bound on the error of
+``high`` with a wide margin, and a value is stored as ``high`` rounded to the largest number of
 significant digits d for which
 
     |rounded - high| + |low - high|  <=  one unit in the d-th significant digit.
 
-The stored decimal is then within one unit of its last digit of the exact solution
-(``abs_error`` states that bound explicitly).  The number of digits is capped at what the
+The stored decimal is then, on the assumption that the two runs do not share an error larger
+than the lower run's own, within one unit of its last digit of the exact solution (``abs_error``
+states that estimate explicitly).  Two runs of the same method can share an error, so this is
+agreement, not a proof: proved enclosures are :mod:`verify.proof`'s.  The number of digits is capped at what the
 lower run can resolve (its bits times log10 2): two runs that agree to the last bit of the
-lower one certify no more than that.
+lower one agree on no more than that.
 """
 from __future__ import annotations
 
@@ -23,18 +25,19 @@ import mpmath
 
 
 @dataclass(frozen=True)
-class Certified:
-    """A value with its certified digits.
+class Agreed:
+    """A value with its agreeing digits.
 
     Attributes
     ----------
     text : str
         The value rounded to ``digits`` significant digits ("0" for an exact zero).
     digits : int or None
-        Certified significant digits (None: both runs gave exactly 0, a value the
+        Significant digits on which the two runs agree (None: both runs gave exactly 0, a value the
         equations hold at zero).
     abs_error : str
-        An upper bound on |text - exact| (2 significant digits, rounded up).
+        The estimated bound on |text - exact| (2 significant digits, rounded up): one unit in the
+        last agreeing digit.
     """
 
     text: str
@@ -42,26 +45,26 @@ class Certified:
     abs_error: str
 
 
-def certify(low, high, low_bits: int, high_bits: int) -> Certified:
-    """Certify ``high`` (an mpmath number from the high-precision run) against ``low``."""
+def agree(low, high, low_bits: int, high_bits: int) -> Agreed:
+    """The digits of ``high`` (an mpmath number from the high-precision run) that ``low`` agrees with."""
     with mpmath.workprec(high_bits + 32):
         a, b = mpmath.mpf(low), mpmath.mpf(high)
         diff = abs(a - b)
         if a == 0 and b == 0:
-            return Certified("0", None, "0")
+            return Agreed("0", None, "0")
         cap = math.floor(low_bits * math.log10(2))
         if b == 0 or diff >= abs(b):
             # not even the first digit is certain: the value is 0 within diff
-            return Certified(_round(b, 3), 0, _up(max(diff, abs(b))))
+            return Agreed(_round(b, 3), 0, _up(max(diff, abs(b))))
         exponent = int(mpmath.floor(mpmath.log10(abs(b))))
         d = min(cap, max(1, int(mpmath.floor(-mpmath.log10(diff / abs(b)))) + 1) if diff > 0 else cap)
         while d >= 1:
             text = _round(b, d)
             unit = mpmath.mpf(10) ** (_exponent_of(text, exponent) - d + 1)
             if abs(mpmath.mpf(text) - b) + diff <= unit:
-                return Certified(text, d, _up(unit))
+                return Agreed(text, d, _up(unit))
             d -= 1
-        return Certified(_round(b, 3), 0, _up(diff + abs(b)))
+        return Agreed(_round(b, 3), 0, _up(diff + abs(b)))
 
 
 def _round(x, digits: int) -> str:

@@ -1,0 +1,77 @@
+"""Validated enclosures (verify.proof): they contain the stored reference values, a perturbed
+problem's do not, and only ball arithmetic enters them.
+
+A short prefix of ``disk-standard-1`` (its first grid interval, 1/32 s) at 128 bits keeps the
+tests fast; the full second is measured outside the tests (README, proof section).
+"""
+from __future__ import annotations
+
+import pytest
+from flint import arb, arb_series, ctx
+
+from models import get_model
+from models.symbols import STATE_NAMES
+from verify.proof.case import enclose_case, excess_over_stored
+from verify.proof.equations import VectorField
+from verify.proof.taylor import taylor_coefficients
+from verify.reference.store import DIRECTORY, read_case
+
+PREFIX = "0.03125"
+SETTINGS = dict(t_stop=PREFIX, order=20, prec=128)
+
+
+@pytest.fixture(scope="module")
+def record():
+    return read_case(DIRECTORY / "disk-standard-1.json")
+
+
+@pytest.fixture(scope="module")
+def proved(record):
+    return enclose_case(record, **SETTINGS)
+
+
+def test_the_enclosure_contains_the_stored_values(record, proved):
+    """The stored 256-bit values lie within the proved ball widened by their abs_error (one unit in the
+    last agreeing digit): the MPFR runs and the proof agree.  The balls are narrow enough for that to
+    mean something: at least 30 proved digits at the prefix's end (the stored values keep 36+)."""
+    excess = excess_over_stored(record, proved)
+    assert all(v <= 0 for v in excess.values()), f"stored values outside the proved balls by {excess}"
+    assert proved.proved_digits() >= 30, proved.proved_digits()
+
+
+@pytest.mark.parametrize("change", [dict(start={"theta": "1.2000000000000000000001"}),
+                                    dict(params={"g": "980.00000000000000000001"})],
+                         ids=["start-theta+1e-22", "rhs-g+1e-20"])
+def test_a_perturbed_problem_excludes_the_stored_values(record, change):
+    """Negative controls: a start or a right-hand side changed far below double's resolution gives
+    balls that exclude the stored values (some component by more than its abs_error)."""
+    excess = excess_over_stored(record, enclose_case(record, **SETTINGS, **change))
+    assert max(excess.values()) > 0, excess
+
+
+def test_every_coefficient_and_ball_is_arb(proved):
+    """Ball arithmetic throughout: the Taylor coefficients from a ball start and the output are arb."""
+    ctx_saved = ctx.prec, ctx.cap
+    ctx.prec, ctx.cap = 128, 12
+    try:
+        field = VectorField(get_model("disk"), {"k": "1/4", "g": "980"})
+        start = [arb("1.2"), arb(0), arb(0), arb(0), arb(1), arb(10), arb(0), arb(0)]
+        coeffs = taylor_coefficients(field, start, 10)
+        assert all(type(c) is arb for row in coeffs for c in row)
+        assert all(type(v) is arb_series for v in field([arb_series([s], prec=3) for s in start]))
+    finally:
+        ctx.prec, ctx.cap = ctx_saved
+    assert all(type(b) is arb for row in proved.y for b in row)
+    assert len(proved.y) == len(STATE_NAMES)
+
+
+def test_a_float_in_the_equations_is_refused():
+    """A floating-point constant would enter the balls unbounded: the reader refuses it."""
+    import sympy as sp
+    from dataclasses import replace
+
+    model = get_model("disk")
+    bad = replace(model, velocity_xy=(model.velocity_xy[0] * sp.Float("1.0000001"), model.velocity_xy[1]))
+    field = VectorField(bad, {"k": "1/4", "g": "980"})
+    with pytest.raises(ValueError, match="not read into ball arithmetic"):
+        field([arb(1)] * 8)
