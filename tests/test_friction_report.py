@@ -223,3 +223,25 @@ def test_figure_rows_run_the_figure_even_after_its_claims_were_evaluated_in_this
         claim.evaluate()
     rows = figure_rows(2)
     assert rows and all("run" in r for r in rows)
+
+
+def test_every_table_row_of_the_section_has_its_header_s_cells():
+    """A '|' in a run's label (|psidot0|) must not split its cell, and no line may start a list."""
+    import json
+    import re
+    from pathlib import Path
+
+    from verify.report.friction import render_markdown
+
+    results = json.loads(Path("reports/results.json").read_text())
+    lines = render_markdown(results["studies"]["friction"], results["studies"].get("dissipation"))
+    cells = lambda line: len(re.split(r"(?<!\\)\|", line.strip())) - 2  # noqa: E731
+    header = None
+    for line in lines:
+        if not line.startswith("|"):
+            header = None
+            assert not re.match(r"^\d+\. ", line), line  # a wrapped sentence must not become a list item
+            continue
+        if header is None:
+            header = cells(line)
+        assert cells(line) == header, line

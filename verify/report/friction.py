@@ -49,8 +49,8 @@ def render_markdown(friction: dict, dissipation=None) -> list:
         "mu_req = |F_h| / N, the friction coefficient a rolling motion needs (paper Eq. 6, F = M (a_C + g Z), from the",
         "run's own accelerations: `sol.friction_required`); a table with less cannot hold the motion. Bands: "
         + ", ".join(bands) + ". For orientation only (as the",
-        "section's brief states them, no measured source cited): a coin on glass about 0.2-0.5, rubber on wood up to about",
-        "1. Largest values are over each run's output grid, up to its first point with N <= 0 if it loses contact.",
+        "section's brief states them, no measured source cited): a coin on glass about 0.2-0.5, rubber on wood up to",
+        "about 1. Largest values are over each run's output grid, up to its first point with N <= 0 if it loses contact.",
         "",
         "**Figure runs** (every run a caption's figure shows, as the claims run it):",
         "",
@@ -58,7 +58,7 @@ def render_markdown(friction: dict, dissipation=None) -> list:
         "|---|---|---|",
     ]
     marks = {}
-    lines += [f"| {r['figure']} | {text(r['run'])} | {_run_cells(r, marks)} |" for r in friction["figures"] if r.get("rolling")]
+    lines += [f"| {r['figure']} | {text(r['run'], table=True)} | {_run_cells(r, marks)} |" for r in friction["figures"] if r.get("rolling")]
     lines += _notes(marks)
     sliding = sorted({r["model"] for r in friction["figures"] if not r.get("rolling")})
     if sliding:
@@ -97,7 +97,7 @@ def _coulomb_lines(examples) -> list:
             phases += " (quad's phases differ)"
         need = f" (needs {e['need']})" if e.get("need") else ""
         balance = " / ".join(e["energy_plus_work_in_eps"][p] for p in ("double", "quad"))
-        lines.append(f"| {text(e['example'])} | {e['friction']}{need} | {phases} | {balance} | "
+        lines.append(f"| {text(e['example'], table=True)} | {e['friction']}{need} | {phases} | {balance} | "
                      f"{e['switch_gap_in_double_eps'] or '-'} |")
     return lines
 
