@@ -50,7 +50,7 @@ import sympy as sp
 from models import coulomb
 from models.symbols import STATE_NAMES
 
-from . import heyoka_log
+from . import heyoka_log, slip_onset
 from .compile import friction_function, symbol_map, to_heyoka
 from .problem import max_step
 from .single import solve as solve_rolling
@@ -506,12 +506,25 @@ class _Run:
         ended = "ok" if sol.status == 0 else (sol.outcome[6:] if sol.outcome.startswith("event:") else sol.outcome)
         self.phases[-1] = Phase("rolling", t0, times[-1], ended)
         if ended == "slips":
-            y_slip = np.ascontiguousarray(sol.y[:, -1])
-            raise self._unsupported(times[-1], f"the contact slips at t = {times[-1]} (mu_req reached mu = "
-                                               f"{float(self.mu):.6g}): the onset of sliding from s = 0 is not "
-                                               f"integrated; slip direction there: {self.slip_direction(y_slip)}")
+            return self.slip_onset(times[-1], np.ascontiguousarray(sol.y[:, -1]))
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", sol.message
+
+    def slip_onset(self, t, y8):
+        """Rolling -> sliding where mu_req reaches mu (the ``slips`` event): s = 0, alpha0 the direction of
+        -F_req, lambda = 0; the slow solution's power series (:mod:`.slip_onset`) carries the state to t1,
+        where heyoka takes over."""
+        prec = self.prec
+        try:
+            t1, start, series, _ = slip_onset.series_start(self.name, prec, y8, self.slip_direction(y8),
+                                                           self.work_so_far, self.par_vector,
+                                                           max_step(y8, self.pars, prec))
+        except slip_onset.SeriesDoesNotSettle as err:
+            raise self._unsupported(t, f"the contact slips at t = {t} (mu_req reached mu = {float(self.mu):.6g}): "
+                                       f"the onset's series does not settle: {err}") from None
+        alpha0 = slip_onset.from_arb(prec, series.alpha[0])
+        y = prec.array(list(y8) + [prec.zero(), alpha0, self.work_so_far])
+        return self.sliding(t + t1, prec.array(start), onset=(t, y))
 
     def slip_direction(self, y8):
         """alpha of the slip at an onset: the direction of -F_req (module docstring)."""
