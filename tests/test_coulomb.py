@@ -13,7 +13,7 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE
 from verify.engine import hybrid, slip_onset
-from verify.studies.coulomb_examples import steady_circle
+from verify.studies.coulomb_examples import perturbed_circle, steady_circle
 from verify.engine.single import solve
 from verify.precision import parse_precision
 
@@ -310,15 +310,14 @@ def test_a_slip_from_rest_of_the_contact_agrees_across_precisions_to_its_conditi
 # --- a slip that starts from rolling where mu_req reaches mu (the slips event) ----------------------
 
 def _perturbed_circle(precision="double", state_change=None):
-    """The steady circle tilted by 0.01 rad: mu_req oscillates; mu halfway between its extremes.
+    """The steady circle tilted by 0.01 rad (mu_req oscillates), mu halfway between its extremes (the
+    report's example, verify.studies.coulomb_examples.perturbed_circle).
 
     Returns the run and the rolling run without the slip event (its mu_req on a fine grid)."""
-    state, params = _steady()
-    state = dict(state, theta=str(float(state["theta"]) + 0.01), **(state_change or {}))
+    state, params, mu = perturbed_circle()
+    state = dict(state, **(state_change or {}))
     free = solve("disk", "0.2", state, params, n_eval=2001)
-    mu_t = _f(free.friction_required)
-    mu = 0.5 * (mu_t.min() + mu_t.max())
-    run = hybrid.solve("disk+coulomb", "0.2", state, params, friction=str(float(mu)), n_eval=11, precision=precision)
+    run = hybrid.solve("disk+coulomb", "0.2", state, params, friction=mu, n_eval=11, precision=precision)
     return run, free
 
 
