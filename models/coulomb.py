@@ -30,7 +30,7 @@ not its Cartesian components nor the CM velocity, because
 The price is the direction equation d(alpha)/dt = (e_perp . du/dt) / s, 0/0 where s = 0.
 Where a sliding phase ends (s -> 0 linearly) the solution is regular and the quotient has a
 finite limit; where one begins from rolling (s grows like t^2) heyoka cannot take a first step
-(see :mod:`verify.engine.hybrid`, which does not integrate that onset).
+(:mod:`verify.engine.slip_onset` starts that onset by the slow solution's power series).
 
 Everything is written in the horizontal frame (e1, h), h = cos(theta) e2 - sin(theta) e3
 = Z x e1 (paper Fig. 1), with ``beta = alpha - phi`` the slip direction measured from the line

@@ -24,10 +24,15 @@ Switches and their maps:
   accelerates (:func:`onset_directions`); d(alpha)/dt = (e_perp . du/dt)/s is 0/0 there, a regular
   singular point whose one regular solution is started by a second-order Taylor polynomial over
   2^-ceil(bits/3) of the step cap (:meth:`_Run.onset`), then heyoka takes over;
-* rolling -> sliding at ``slips`` (mu_req reaches mu exactly): the exact map is s = 0, alpha the
-  direction of -F_req, but there lambda = 0, s grows like t^2 and the direction's pull-back is stiff
-  like 1/t^2 (its rate ~ mu N / s), which an explicit Taylor method pays for with ~ (that rate's
-  time scale) / (start) steps.  **Not integrated**: a run that reaches it raises
+* rolling -> sliding at ``slips`` (mu_req reaches mu exactly): s = 0, alpha0 the direction of -F_req,
+  but there lambda = 0: s grows like sigma t^2 / 2 and d(alpha)/dt = B/s has an irregular singular point
+  (deviations from the slow solution die like exp(-A_s / t), A_s = 2 |B_alpha| / sigma), which an explicit
+  Taylor method started at a small t pays for with ~ A_s / t steps.  The slow solution is carried from
+  the event to t1 (the step cap, or 2^-j of it) by its power series in t, built order by order in ball
+  arithmetic at the precision plus guard bits and summed where its terms are below eps / 16 of each
+  component's largest (:mod:`verify.engine.slip_onset`, :meth:`_Run.slip_onset`); heyoka takes over at
+  t1, where the pull-back's rate A_s / t1^2 is a few hundred per second on the examples.  A series that
+  does not reach eps at any t1 tried (or a direction slope B_alpha that does not restore) raises
   :class:`UnsupportedTransition` naming the time, with the run up to there.
 
 Error budget: each phase's Taylor integration at tolerance epsilon; each switch time located by
@@ -50,7 +55,7 @@ import sympy as sp
 from models import coulomb
 from models.symbols import STATE_NAMES
 
-from . import heyoka_log
+from . import heyoka_log, slip_onset
 from .compile import friction_function, symbol_map, to_heyoka
 from .problem import max_step
 from .single import solve as solve_rolling
@@ -64,7 +69,8 @@ _SLIP, _DIRECTION, _WORK = 8, 9, 10
 
 
 class UnsupportedTransition(IntegrationError):
-    """The run reached a switch this driver does not integrate (slip onset from rolling at mu_req = mu)."""
+    """The run reached a switch this driver does not integrate (a slip onset whose direction is not unique,
+    or whose series at mu_req = mu does not settle)."""
 
 
 @dataclass(frozen=True)
@@ -241,8 +247,9 @@ def solve(
         Bad input; :class:`~verify.engine.validation.InvalidStart` for a start outside the domain
         or with N <= 0.
     UnsupportedTransition
-        The run reached the onset of slip from rolling where mu_req = mu (the ``slips`` event), or a
-        slip from s = 0 whose direction is not unique; ``t`` is its time, ``trajectory`` the
+        The run reached the onset of slip from rolling where mu_req = mu (the ``slips`` event) and the
+        onset's series does not settle, or a slip from s = 0 whose direction is not unique; ``t`` is
+        its time, ``trajectory`` the
         :class:`HybridSolution` up to it.
     IntegrationError
         A sliding phase failed (non-finite state, event detection).
@@ -468,7 +475,7 @@ class _Run:
         solution, pulled back at the rate lambda / s and moving the state by far less.
 
         Where mu_req = mu exactly (the ``slips`` event of a rolling phase) lambda = 0: s grows like
-        t^2, alpha's pull-back is stiff like 1/t^2, and that onset is not integrated (:meth:`rolling`).
+        t^2, alpha's pull-back is stiff like 1/t^2, and that onset is :meth:`slip_onset`'s.
         """
         prec, c = self.prec, self.c
         roots = onset_directions(c, y8, self.par_vector)
@@ -506,12 +513,25 @@ class _Run:
         ended = "ok" if sol.status == 0 else (sol.outcome[6:] if sol.outcome.startswith("event:") else sol.outcome)
         self.phases[-1] = Phase("rolling", t0, times[-1], ended)
         if ended == "slips":
-            y_slip = np.ascontiguousarray(sol.y[:, -1])
-            raise self._unsupported(times[-1], f"the contact slips at t = {times[-1]} (mu_req reached mu = "
-                                               f"{float(self.mu):.6g}): the onset of sliding from s = 0 is not "
-                                               f"integrated; slip direction there: {self.slip_direction(y_slip)}")
+            return self.slip_onset(times[-1], np.ascontiguousarray(sol.y[:, -1]))
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", sol.message
+
+    def slip_onset(self, t, y8):
+        """Rolling -> sliding where mu_req reaches mu (the ``slips`` event): s = 0, alpha0 the direction of
+        -F_req, lambda = 0; the slow solution's power series (:mod:`.slip_onset`) carries the state to t1,
+        where heyoka takes over."""
+        prec = self.prec
+        try:
+            t1, start, series, _ = slip_onset.series_start(self.name, prec, y8, self.slip_direction(y8),
+                                                           self.work_so_far, self.par_vector,
+                                                           max_step(y8, self.pars, prec))
+        except slip_onset.SeriesDoesNotSettle as err:
+            raise self._unsupported(t, f"the contact slips at t = {t} (mu_req reached mu = {float(self.mu):.6g}): "
+                                       f"the onset's series does not settle: {err}") from None
+        alpha0 = slip_onset.from_arb(prec, series.alpha[0])
+        y = prec.array(list(y8) + [prec.zero(), alpha0, self.work_so_far])
+        return self.sliding(t + t1, prec.array(start), onset=(t, y))
 
     def slip_direction(self, y8):
         """alpha of the slip at an onset: the direction of -F_req (module docstring)."""

@@ -84,12 +84,13 @@ def _coulomb_lines(examples) -> list:
     if not examples:
         return []
     lines = ["", "**Rolling and sliding** (`disk+coulomb`: the disk rolls, or slides with F_h = -mu N u/|u|, switching at",
-             "heyoka's events; `verify.engine.hybrid`). A skid launched with the wrong centre-of-mass velocity, and the",
+             "heyoka's events; `verify.engine.hybrid`). A skid launched with the wrong centre-of-mass velocity, the",
              "steady circle of Le Saux, Leine & Glocker (our reading of their rho) given less friction than it needs, so that",
-             "its slip starts from s = 0. Phases from the double run; E + W (W the work of friction) in eps of E's term",
-             "scale; the switch times of double and quad apart by at most the last column, in double's eps. A slip that",
-             "starts from rolling where mu_req reaches mu exactly is not integrated (the direction of an emerging slip is",
-             "stiff like 1/t^2 there), so neither example starts rolling.", "",
+             "its slip starts from s = 0, and that circle tilted off its steady motion with mu between the extremes of its",
+             "mu_req, which rolls until mu_req reaches mu and slides from there (the emerging slip's direction is stiff like",
+             "1/t^2: the slow solution's power series carries it to the first step, `verify.engine.slip_onset`). Phases",
+             "from the double run; E + W (W the work of friction) in eps of E's term scale; the switch times of double and",
+             "quad apart by at most the last column, in double's eps.", "",
              "| example | mu | phases (ends) | E + W drift, double / quad | switch times apart |", "|---|---|---|---|---|"]
     for e in examples:
         phases = "; ".join(f"{p['kind']} {p['t_start']}-{p['t_end']} s ({p['ended']})" for p in e["phases"])

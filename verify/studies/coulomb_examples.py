@@ -1,16 +1,18 @@
 """Rolling and sliding with Coulomb friction: the report's examples (``disk+coulomb``).
 
-Two runs of :func:`verify.engine.hybrid.solve`, each in double and quad:
+Three runs of :func:`verify.engine.hybrid.solve`, each in double and quad:
 
 * **a skid**: the wobbling disk launched with a centre-of-mass velocity that is not the no-slip one
   (the contact slips at t = 0 with s > 0), mu = 1: it slides, sticks and rolls on;
 * **a steady circle below its friction**: the stationary circular rolling of ``tests/test_coulomb.py``
   (Le Saux, Leine & Glocker's g/r = 196.2 s^-2, 5 deg; our reading of their rho) with mu = 0.9 of what
-  the circle needs: the contact cannot hold at t = 0, the slip starts from s = 0, then sticks.
+  the circle needs: the contact cannot hold at t = 0, the slip starts from s = 0, then sticks;
+* **a perturbed circle**: that circle tilted by 0.01 rad more, whose mu_req oscillates, with mu halfway
+  between its extremes: it rolls until mu_req reaches mu, slides from there (the onset's power series,
+  :mod:`verify.engine.slip_onset`), sticks and rolls on.
 
 For each: the phases and how they end, the energy balance E + W in eps of E's term scale, and how far
-the switch times of the two precisions lie apart.  The onset of a slip from rolling where mu_req
-reaches mu exactly is not integrated (:mod:`verify.engine.hybrid`), so neither example starts rolling.
+the switch times of the two precisions lie apart.
 """
 from __future__ import annotations
 
@@ -49,12 +51,29 @@ def _circle_case():
             "need": f"{float(need):.6g}"}
 
 
+def perturbed_circle():
+    """(state, params, mu) of the steady circle tilted by 0.01 rad, mu halfway between the extremes of its
+    mu_req over 0.2 s (the rolling run without the slip event, double, 2001 outputs)."""
+    from ..engine.single import solve
+
+    state, params = steady_circle()
+    state = dict(state, theta=str(float(state["theta"]) + 0.01))
+    need = [float(v) for v in solve("disk", "0.2", state, params, n_eval=2001).friction_required]
+    return state, params, str(0.5 * (min(need) + max(need)))
+
+
+def _perturbed_case():
+    state, params, mu = perturbed_circle()
+    return {"state": state, "velocity": None, "friction": mu, "t_end": "0.2", "params": params}
+
+
 def examples() -> list:
     """One record per example: the phases per precision, E + W, and the switch times' agreement."""
     from ..engine import hybrid
 
     out = []
-    for name, case in (("skid", SKID), ("circle below its friction", _circle_case())):
+    for name, case in (("skid", SKID), ("circle below its friction", _circle_case()),
+                       ("perturbed circle, mu between its extremes", _perturbed_case())):
         runs = {p: hybrid.solve("disk+coulomb", case["t_end"], case["state"], case["params"], friction=case["friction"],
                                 velocity=case["velocity"], precision=p, n_eval=11) for p in PRECISIONS}
         double, quad = runs["double"], runs["quad"]
