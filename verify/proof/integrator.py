@@ -26,6 +26,7 @@ from fractions import Fraction
 from flint import arb, ctx, fmpq
 
 from .enclosure import NoEnclosure, a_priori_box
+from .lohner import Parallelepiped, lohner_step
 from .taylor import taylor_coefficients
 
 
@@ -71,7 +72,8 @@ class Enclosure:
 
 
 def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320,
-            remainder_bits: int | None = None) -> Enclosure:
+            remainder_bits: int | None = None, method: str = "direct", jacobian_order: int = 12,
+            jacobian_prec: int = 64) -> Enclosure:
     """Enclose the solution of dy/dt = field(y), y(0) = start, at every time of ``times``.
 
     Parameters
@@ -89,9 +91,17 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     remainder_bits : int, optional
         A step's remainder is kept below 2^-remainder_bits relative to the state's size
         (default ``prec``); the step is halved until it is.
+    method : {"direct", "lohner"}
+        ``"direct"``: the Taylor polynomial evaluated on the balls (no wrapping control);
+        ``"lohner"``: the set carried as a point plus a rotated box (:mod:`.lohner`).
+    jacobian_order, jacobian_prec : int
+        For ``"lohner"``: Taylor order and working precision of the flow's Jacobian
+        (:mod:`.variational`).
     """
     from .equations import exact
 
+    if method not in ("direct", "lohner"):
+        raise ValueError(f"unknown method {method!r}")
     remainder_bits = prec if remainder_bits is None else remainder_bits
     times = [Fraction(str(t)) for t in times]
     if times[0] != 0 or any(b <= a for a, b in zip(times, times[1:])):
@@ -100,6 +110,7 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     ctx.prec, ctx.cap = prec, order + 2  # cap: Arb's series length limit (python-flint's default is 10)
     try:
         y = [arb(exact(v)) for v in start]
+        state = Parallelepiped.point(y) if method == "lohner" else y
         out = [[b] for b in y]
         steps = halvings = 0
         now = Fraction(0)
@@ -110,14 +121,24 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
             while now < target:
                 while True:
                     try:
-                        new, h_next = _step(field, y, h, order, remainder_bits)
+                        allowed = _remainder_target(y, remainder_bits, relax=method == "direct")
+                        if method == "lohner":
+                            state, bound = lohner_step(field, state, h, order, allowed, jacobian_order=jacobian_order,
+                                                       jacobian_prec=jacobian_prec)
+                            y = state.hull()
+                        else:
+                            y, bound = _step(field, y, h, order, allowed)
+                            state = y
                         break
                     except NoEnclosure:
                         h /= 2
                         halvings += 1
                         if h < interval / 2 ** 40:
                             raise RuntimeError(f"no step validated at t = {float(now)}") from None
-                y, now, steps = new, now + h, steps + 1
+                now, steps = now + h, steps + 1
+                # next step: where the remainder would reach the target, from this step's bound (order n)
+                grow = (allowed / max(bound, 1e-300)) ** (1.0 / order)
+                h_next = float(h) * min(2.0, max(0.5, 0.9 * grow))
                 # the next step: interval / 2^j, doubled only where the rest of the interval stays a multiple
                 h_guess = h_next
                 while 2 * h <= h_next and ((target - now) / (2 * h)).denominator == 1:
@@ -131,17 +152,24 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
         ctx.prec, ctx.cap = saved
 
 
-def _step(field, y, h: Fraction, order: int, remainder_bits: int):
-    """One validated step of exact size h: (new balls, a suggested next step size)."""
+def _remainder_target(y: list, remainder_bits: int, relax: bool) -> float:
+    """The largest remainder worth a step: 2^-remainder_bits of the state's size; with ``relax``, no
+    point in one far below the balls' own radius (the direct method's wrapping has already set it).
+    Not relaxed for Lohner's method: there a remainder of a fixed fraction of the width would make
+    the width grow geometrically, step after step."""
+    scale = max(1.0, max(abs(float(b.mid())) for b in y))
+    floor = scale * 2.0 ** -remainder_bits
+    return max(floor, max(float(b.rad()) for b in y) / 16) if relax else floor
+
+
+def _step(field, y, h: Fraction, order: int, allowed: float):
+    """One validated direct step of exact size h: (new balls, the remainder's bound)."""
     ha = arb(fmpq(h.numerator, h.denominator))
     coeffs = taylor_coefficients(field, y, order - 1)
     box = a_priori_box(field, y, ha)
     rem = [c[order] for c in taylor_coefficients(field, box, order)]
-    scale = max(1.0, max(abs(float(b.mid())) for b in y))
     bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
-    # no point in a remainder far below the balls' own radius (wrapping has already set the width)
-    target = max(scale * 2.0 ** -remainder_bits, max(float(b.rad()) for b in y) / 16)
-    if not math.isfinite(bound) or bound > target:
+    if not math.isfinite(bound) or bound > allowed:
         raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
     new = []
     for c, r in zip(coeffs, rem):
@@ -149,9 +177,7 @@ def _step(field, y, h: Fraction, order: int, remainder_bits: int):
         for k in range(order - 1, -1, -1):
             acc = acc * ha + c[k]
         new.append(acc)
-    # next step: where the remainder would reach the target, from this step's bound (order n)
-    grow = (target / max(bound, 1e-300)) ** (1.0 / order)
-    return new, float(h) * min(2.0, max(0.5, 0.9 * grow))
+    return new, bound
 
 
 def _dyadic_below(gap: Fraction, guess) -> Fraction:
