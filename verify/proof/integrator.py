@@ -9,13 +9,14 @@ Each step from Y (eight balls) over an exact dyadic step h:
    (0, h), and y(xi_i) ∈ B, so the coefficient c_n computed from B encloses it;
 4. Y <- sum_{k<n} c_k(Y) h^k + c_n(B) h^n, in Arb.
 
-Against wrapping nothing more is done yet: the step evaluates the Taylor polynomial on the
-ball vector Y directly (interval Taylor method, no mean-value form, no QR/Lohner
-parallelepiped), so each step's balls grow with |Dphi| (absolute values of the step's
-Jacobian) instead of the flow's own conditioning; the working precision is set high enough
-that this growth still leaves the digits wanted.  The step size is chosen from the
-midpoints of the coefficients and halved until the enclosure validates; times are exact
-rationals and every output time is hit exactly.
+With ``method="direct"`` the step evaluates the Taylor polynomial on the ball vector Y
+directly (interval Taylor method), so each step's balls grow with |Dphi| (absolute values of
+the step's Jacobian) instead of the flow's own conditioning: the wrapping effect.  With
+``method="lohner"`` the set is carried as a point plus a rotated box (:mod:`.lohner`), step 4
+applies to the point only and the rest goes through the flow's enclosed Jacobian.  The step
+size is predicted from the previous step's remainder bound and halved until the enclosure
+validates and the remainder is small enough; times are exact rationals and every output time
+is hit exactly.
 """
 from __future__ import annotations
 
