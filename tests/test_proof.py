@@ -133,8 +133,9 @@ def test_every_coefficient_and_ball_is_arb(proved):
 
 def test_a_float_in_the_equations_is_refused():
     """A floating-point constant would enter the balls unbounded: the reader refuses it."""
-    import sympy as sp
     from dataclasses import replace
+
+    import sympy as sp
 
     model = get_model("disk")
     bad = replace(model, velocity_xy=(model.velocity_xy[0] * sp.Float("1.0000001"), model.velocity_xy[1]))

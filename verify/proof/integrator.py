@@ -21,14 +21,15 @@ is hit exactly.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field as dc_field
+from dataclasses import dataclass
+from dataclasses import field as dc_field
 from fractions import Fraction
 
-from flint import arb, ctx, fmpq
+from flint import arb, ctx
 
-from .enclosure import NoEnclosure, a_priori_box
+from .enclosure import NoEnclosure
 from .lohner import Parallelepiped, lohner_step
-from .taylor import taylor_coefficients
+from .taylor import validated_step
 
 
 @dataclass
@@ -128,7 +129,7 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
                                                        jacobian_prec=jacobian_prec)
                             y = state.hull()
                         else:
-                            y, bound = _step(field, y, h, order, allowed)
+                            y, bound = validated_step(field, y, h, order, allowed)
                             state = y
                         break
                     except NoEnclosure:
@@ -161,24 +162,6 @@ def _remainder_target(y: list, remainder_bits: int, relax: bool) -> float:
     scale = max(1.0, max(abs(float(b.mid())) for b in y))
     floor = scale * 2.0 ** -remainder_bits
     return max(floor, max(float(b.rad()) for b in y) / 16) if relax else floor
-
-
-def _step(field, y, h: Fraction, order: int, allowed: float):
-    """One validated direct step of exact size h: (new balls, the remainder's bound)."""
-    ha = arb(fmpq(h.numerator, h.denominator))
-    coeffs = taylor_coefficients(field, y, order - 1)
-    box = a_priori_box(field, y, ha)
-    rem = [c[order] for c in taylor_coefficients(field, box, order)]
-    bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
-    if not math.isfinite(bound) or bound > allowed:
-        raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
-    new = []
-    for c, r in zip(coeffs, rem):
-        acc = r
-        for k in range(order - 1, -1, -1):
-            acc = acc * ha + c[k]
-        new.append(acc)
-    return new, bound
 
 
 def _dyadic_below(gap: Fraction, guess) -> Fraction:

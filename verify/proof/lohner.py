@@ -18,14 +18,12 @@ axis-aligned box each step (the wrapping effect of the direct method).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-from flint import arb, arb_mat, fmpq
+from flint import arb, arb_mat
 
-from .enclosure import NoEnclosure, a_priori_box
-from .taylor import taylor_coefficients
+from .taylor import validated_step
 from .variational import flow_jacobian
 
 
@@ -38,7 +36,7 @@ class Parallelepiped:
     box: arb_mat
 
     @classmethod
-    def point(cls, y: list) -> "Parallelepiped":
+    def point(cls, y: list) -> Parallelepiped:
         n = len(y)
         return cls(list(y), arb_mat(n, n, [arb(1 if i == j else 0) for i in range(n) for j in range(n)]),
                    arb_mat(n, 1, [arb(0)] * n))
@@ -55,19 +53,7 @@ def lohner_step(field, state: Parallelepiped, h: Fraction, order: int, allowed: 
 
     Raises :class:`NoEnclosure` when that bound exceeds ``allowed`` (the caller halves the step).
     """
-    ha = arb(fmpq(h.numerator, h.denominator))
-    coeffs = taylor_coefficients(field, state.centre, order - 1)
-    box = a_priori_box(field, state.centre, ha)
-    rem = [c[order] for c in taylor_coefficients(field, box, order)]
-    bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
-    if not math.isfinite(bound) or bound > allowed:
-        raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
-    image_of_centre = []
-    for c, r in zip(coeffs, rem):
-        acc = r
-        for k in range(order - 1, -1, -1):
-            acc = acc * ha + c[k]
-        image_of_centre.append(acc)
+    image_of_centre, bound = validated_step(field, state.centre, h, order, allowed)
     jacobian = flow_jacobian(field, state.hull(), h, order=jacobian_order, prec=jacobian_prec)
     n = len(image_of_centre)
     image_of_basis = jacobian * state.basis

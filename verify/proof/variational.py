@@ -24,7 +24,7 @@ DIMENSION = 8
 class Dual:
     """A value and its derivatives (arb or arb_series), with the arithmetic the model reader uses."""
 
-    __slots__ = ("v", "d")
+    __slots__ = ("d", "v")
 
     def __init__(self, v, d):
         self.v, self.d = v, d
