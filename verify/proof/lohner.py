@@ -53,8 +53,9 @@ def lohner_step(field, state: Parallelepiped, h: Fraction, order: int, allowed: 
 
     Raises :class:`NoEnclosure` when that bound exceeds ``allowed`` (the caller halves the step).
     """
-    image_of_centre, bound = validated_step(field, state.centre, h, order, allowed)
+    # the Jacobian first: its enclosure is the cheaper one to fail, and the likelier at a given h
     jacobian = flow_jacobian(field, state.hull(), h, order=jacobian_order, prec=jacobian_prec)
+    image_of_centre, bound = validated_step(field, state.centre, h, order, allowed)
     n = len(image_of_centre)
     image_of_basis = jacobian * state.basis
     q = _orthonormal_columns(image_of_basis.mid(), [state.box[i, 0].rad() for i in range(n)])
