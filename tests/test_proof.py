@@ -49,6 +49,72 @@ def test_a_perturbed_problem_excludes_the_stored_values(record, change):
     assert max(excess.values()) > 0, excess
 
 
+@pytest.fixture(scope="module")
+def proved_lohner(record):
+    return enclose_case(record, **SETTINGS, method="lohner")
+
+
+def test_the_lohner_enclosure_contains_the_stored_values(record, proved_lohner):
+    """Lohner's method (the set as a point plus a rotated box) proves the same stored values, with
+    at least 30 proved digits at the prefix's end."""
+    excess = excess_over_stored(record, proved_lohner)
+    assert all(v <= 0 for v in excess.values()), f"stored values outside the proved balls by {excess}"
+    assert proved_lohner.proved_digits() >= 30, proved_lohner.proved_digits()
+
+
+@pytest.mark.parametrize("change", [dict(start={"theta": "1.2000000000000000000001"}),
+                                    dict(params={"g": "980.00000000000000000001"})],
+                         ids=["start-theta+1e-22", "rhs-g+1e-20"])
+def test_a_perturbed_problem_excludes_the_stored_values_under_lohner(record, change):
+    """The negative controls hold for Lohner's method too."""
+    excess = excess_over_stored(record, enclose_case(record, **SETTINGS, **change, method="lohner"))
+    assert max(excess.values()) > 0, excess
+
+
+@pytest.mark.slow
+def test_lohner_is_narrower_than_direct_at_an_eighth_of_a_second(record):
+    """Measured, not assumed: at t = 1/8 s (128 bits, order 20) the wrapping of the direct method has
+    set its width, and Lohner's balls are narrower in every component; both still hold the stored values."""
+    settings = dict(t_stop="0.125", order=20, prec=128)
+    direct = enclose_case(record, **settings)
+    lohner = enclose_case(record, **settings, method="lohner")
+    for name, d, w in zip(STATE_NAMES, direct.y, lohner.y):
+        assert w[-1].rad() < d[-1].rad(), (name, w[-1], d[-1])
+    for enc in (direct, lohner):
+        assert all(v <= 0 for v in excess_over_stored(record, enc).values())
+
+
+def test_the_flow_jacobian_contains_the_difference_quotient():
+    """The enclosed Jacobian of the flow over a box contains the exact Jacobian at the box's centre,
+    checked against a central difference quotient of two point enclosures (a ball of its own truncation
+    error, O(delta^2) bounded generously by 1e-6 for delta = 2^-30), and is narrow (width < 1e-12)."""
+    from fractions import Fraction
+
+    from verify.proof.integrator import enclose
+    from verify.proof.variational import flow_jacobian
+
+    field = VectorField(get_model("disk"), {"k": "1/4", "g": "980"})
+    start = [Fraction(6, 5), 0, 0, 0, 1, 10, 0, 0]
+    h = Fraction(1, 1024)
+    saved = ctx.prec, ctx.cap
+    ctx.prec, ctx.cap = 128, 22
+    try:
+        jac = flow_jacobian(field, [arb(Fraction(v).numerator) / Fraction(v).denominator for v in start], h)
+    finally:
+        ctx.prec, ctx.cap = saved
+    delta = Fraction(1, 2 ** 30)
+    for j in (0, 3, 5):
+        plus, minus = list(start), list(start)
+        plus[j] += delta
+        minus[j] -= delta
+        up = enclose(field, plus, [0, h], order=20, prec=128)
+        down = enclose(field, minus, [0, h], order=20, prec=128)
+        for i in range(8):
+            quotient = (up.y[i][-1] - down.y[i][-1]) / (2 * arb(delta.numerator) / delta.denominator)
+            assert jac[i, j].rad() < 1e-12
+            assert (quotient + arb(0, 1e-6)).overlaps(jac[i, j]), (i, j, quotient, jac[i, j])
+
+
 def test_every_coefficient_and_ball_is_arb(proved):
     """Ball arithmetic throughout: the Taylor coefficients from a ball start and the output are arb."""
     ctx_saved = ctx.prec, ctx.cap
@@ -67,8 +133,9 @@ def test_every_coefficient_and_ball_is_arb(proved):
 
 def test_a_float_in_the_equations_is_refused():
     """A floating-point constant would enter the balls unbounded: the reader refuses it."""
-    import sympy as sp
     from dataclasses import replace
+
+    import sympy as sp
 
     model = get_model("disk")
     bad = replace(model, velocity_xy=(model.velocity_xy[0] * sp.Float("1.0000001"), model.velocity_xy[1]))

@@ -18,11 +18,11 @@ from .integrator import Enclosure, enclose
 
 
 def enclose_case(record: dict, *, t_stop=None, order: int = 24, prec: int = 256, start=None,
-                 params=None) -> Enclosure:
+                 params=None, **options) -> Enclosure:
     """Enclose a reference case's solution on its grid (up to ``t_stop``, default its end).
 
     ``start`` and ``params`` (mappings of name -> exact value) replace the file's, for
-    negative controls.
+    negative controls; ``options`` go to :func:`~verify.proof.integrator.enclose` (``method``).
     """
     model = get_model(record["model"]["name"])
     values = {k: v["exact"] for k, v in record["model"]["parameters"].items()}
@@ -31,7 +31,8 @@ def enclose_case(record: dict, *, t_stop=None, order: int = 24, prec: int = 256,
     state.update(start or {})
     stop = Fraction(record["t_end"] if t_stop is None else str(t_stop))
     times = [Fraction(t) for t in record["grid"] if Fraction(t) <= stop]
-    return enclose(VectorField(model, values), [state[n] for n in STATE_NAMES], times, order=order, prec=prec)
+    return enclose(VectorField(model, values), [state[n] for n in STATE_NAMES], times, order=order, prec=prec,
+                   **options)
 
 
 def excess_over_stored(record: dict, enc: Enclosure, j: int = -1) -> dict:

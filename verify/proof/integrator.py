@@ -9,24 +9,27 @@ Each step from Y (eight balls) over an exact dyadic step h:
    (0, h), and y(xi_i) ∈ B, so the coefficient c_n computed from B encloses it;
 4. Y <- sum_{k<n} c_k(Y) h^k + c_n(B) h^n, in Arb.
 
-Against wrapping nothing more is done yet: the step evaluates the Taylor polynomial on the
-ball vector Y directly (interval Taylor method, no mean-value form, no QR/Lohner
-parallelepiped), so each step's balls grow with |Dphi| (absolute values of the step's
-Jacobian) instead of the flow's own conditioning; the working precision is set high enough
-that this growth still leaves the digits wanted.  The step size is chosen from the
-midpoints of the coefficients and halved until the enclosure validates; times are exact
-rationals and every output time is hit exactly.
+With ``method="direct"`` the step evaluates the Taylor polynomial on the ball vector Y
+directly (interval Taylor method), so each step's balls grow with |Dphi| (absolute values of
+the step's Jacobian) instead of the flow's own conditioning: the wrapping effect.  With
+``method="lohner"`` the set is carried as a point plus a rotated box (:mod:`.lohner`), step 4
+applies to the point only and the rest goes through the flow's enclosed Jacobian.  The step
+size is predicted from the previous step's remainder bound and halved until the enclosure
+validates and the remainder is small enough; times are exact rationals and every output time
+is hit exactly.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field as dc_field
+from dataclasses import dataclass
+from dataclasses import field as dc_field
 from fractions import Fraction
 
-from flint import arb, ctx, fmpq
+from flint import arb, ctx
 
-from .enclosure import NoEnclosure, a_priori_box
-from .taylor import taylor_coefficients
+from .enclosure import NoEnclosure
+from .lohner import Parallelepiped, lohner_step
+from .taylor import validated_step
 
 
 @dataclass
@@ -71,7 +74,8 @@ class Enclosure:
 
 
 def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320,
-            remainder_bits: int | None = None) -> Enclosure:
+            remainder_bits: int | None = None, method: str = "direct", jacobian_order: int = 12,
+            jacobian_prec: int = 64) -> Enclosure:
     """Enclose the solution of dy/dt = field(y), y(0) = start, at every time of ``times``.
 
     Parameters
@@ -89,9 +93,17 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     remainder_bits : int, optional
         A step's remainder is kept below 2^-remainder_bits relative to the state's size
         (default ``prec``); the step is halved until it is.
+    method : {"direct", "lohner"}
+        ``"direct"``: the Taylor polynomial evaluated on the balls (no wrapping control);
+        ``"lohner"``: the set carried as a point plus a rotated box (:mod:`.lohner`).
+    jacobian_order, jacobian_prec : int
+        For ``"lohner"``: Taylor order and working precision of the flow's Jacobian
+        (:mod:`.variational`).
     """
     from .equations import exact
 
+    if method not in ("direct", "lohner"):
+        raise ValueError(f"unknown method {method!r}")
     remainder_bits = prec if remainder_bits is None else remainder_bits
     times = [Fraction(str(t)) for t in times]
     if times[0] != 0 or any(b <= a for a, b in zip(times, times[1:])):
@@ -100,6 +112,7 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     ctx.prec, ctx.cap = prec, order + 2  # cap: Arb's series length limit (python-flint's default is 10)
     try:
         y = [arb(exact(v)) for v in start]
+        state = Parallelepiped.point(y) if method == "lohner" else y
         out = [[b] for b in y]
         steps = halvings = 0
         now = Fraction(0)
@@ -110,14 +123,24 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
             while now < target:
                 while True:
                     try:
-                        new, h_next = _step(field, y, h, order, remainder_bits)
+                        allowed = _remainder_target(y, remainder_bits, relax=method == "direct")
+                        if method == "lohner":
+                            state, bound = lohner_step(field, state, h, order, allowed, jacobian_order=jacobian_order,
+                                                       jacobian_prec=jacobian_prec)
+                            y = state.hull()
+                        else:
+                            y, bound = validated_step(field, y, h, order, allowed)
+                            state = y
                         break
                     except NoEnclosure:
                         h /= 2
                         halvings += 1
                         if h < interval / 2 ** 40:
                             raise RuntimeError(f"no step validated at t = {float(now)}") from None
-                y, now, steps = new, now + h, steps + 1
+                now, steps = now + h, steps + 1
+                # next step: where the remainder would reach the target, from this step's bound (order n)
+                grow = (allowed / max(bound, 1e-300)) ** (1.0 / order)
+                h_next = float(h) * min(2.0, max(0.5, 0.9 * grow))
                 # the next step: interval / 2^j, doubled only where the rest of the interval stays a multiple
                 h_guess = h_next
                 while 2 * h <= h_next and ((target - now) / (2 * h)).denominator == 1:
@@ -131,27 +154,14 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
         ctx.prec, ctx.cap = saved
 
 
-def _step(field, y, h: Fraction, order: int, remainder_bits: int):
-    """One validated step of exact size h: (new balls, a suggested next step size)."""
-    ha = arb(fmpq(h.numerator, h.denominator))
-    coeffs = taylor_coefficients(field, y, order - 1)
-    box = a_priori_box(field, y, ha)
-    rem = [c[order] for c in taylor_coefficients(field, box, order)]
+def _remainder_target(y: list, remainder_bits: int, relax: bool) -> float:
+    """The largest remainder worth a step: 2^-remainder_bits of the state's size; with ``relax``, no
+    point in one far below the balls' own radius (the direct method's wrapping has already set it).
+    Not relaxed for Lohner's method: there a remainder of a fixed fraction of the width would make
+    the width grow geometrically, step after step."""
     scale = max(1.0, max(abs(float(b.mid())) for b in y))
-    bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
-    # no point in a remainder far below the balls' own radius (wrapping has already set the width)
-    target = max(scale * 2.0 ** -remainder_bits, max(float(b.rad()) for b in y) / 16)
-    if not math.isfinite(bound) or bound > target:
-        raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
-    new = []
-    for c, r in zip(coeffs, rem):
-        acc = r
-        for k in range(order - 1, -1, -1):
-            acc = acc * ha + c[k]
-        new.append(acc)
-    # next step: where the remainder would reach the target, from this step's bound (order n)
-    grow = (target / max(bound, 1e-300)) ** (1.0 / order)
-    return new, float(h) * min(2.0, max(0.5, 0.9 * grow))
+    floor = scale * 2.0 ** -remainder_bits
+    return max(floor, max(float(b.rad()) for b in y) / 16) if relax else floor
 
 
 def _dyadic_below(gap: Fraction, guess) -> Fraction:

@@ -10,7 +10,12 @@ differentiation of the model's expressions, rigorous by inclusion.
 """
 from __future__ import annotations
 
-from flint import arb_series, ctx
+import math
+from fractions import Fraction
+
+from flint import arb, arb_series, ctx, fmpq
+
+from .enclosure import NoEnclosure, a_priori_box
 
 
 def taylor_coefficients(field, start: list, order: int) -> list:
@@ -41,3 +46,23 @@ def _coeff(s, k):
     from flint import arb
 
     return c[k] if k < len(c) else arb(0)
+
+
+def validated_step(field, y, h: Fraction, order: int, allowed: float):
+    """One validated Taylor step of exact size h from the balls y: (balls containing every solution
+    from y at h, the Lagrange remainder's bound), or :class:`NoEnclosure` when the box does not
+    validate or the bound exceeds ``allowed`` (steps 1-4 of :mod:`.integrator`)."""
+    ha = arb(fmpq(h.numerator, h.denominator))
+    coeffs = taylor_coefficients(field, y, order - 1)
+    box = a_priori_box(field, y, ha)
+    rem = [c[order] for c in taylor_coefficients(field, box, order)]
+    bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
+    if not math.isfinite(bound) or bound > allowed:
+        raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
+    new = []
+    for c, r in zip(coeffs, rem):
+        acc = r
+        for k in range(order - 1, -1, -1):
+            acc = acc * ha + c[k]
+        new.append(acc)
+    return new, bound
