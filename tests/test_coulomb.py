@@ -421,3 +421,19 @@ def test_the_ring_slides_sticks_and_rolls_with_its_energy_balanced():
     assert sol.energy_plus_work_drift_in_eps <= 64
     e = np.array([float(v) for v in sol.energy])
     assert e[sol.phase_index == 1][-1] < e[0] - 1e3 * 64 * 2.0 ** -52 * sol.energy_scale  # friction did work
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--friction", "abc"], "friction='abc'"),
+    (["--friction", "nan"], "friction='nan'"),
+    (["--friction", "1", "--t-end", "abc"], "--t-end abc"),
+])
+def test_bad_input_names_the_value_and_exits_2(capsys, argv, words):
+    from verify.cli import main
+
+    args = ["trajectory", "disk+coulomb", "--state", "theta=1.2"] + argv
+    if "--t-end" not in argv:
+        args += ["--t-end", "1"]
+    code = main(args)
+    out, err = capsys.readouterr()
+    assert code == 2 and out == "" and words in err and "Traceback" not in err

@@ -60,7 +60,7 @@ from .compile import friction_function, symbol_map, to_heyoka
 from .problem import max_step
 from .single import solve as solve_rolling
 from .trajectory import IntegrationError
-from .validation import InvalidStart, parameters as resolve_parameters, state as resolve_state
+from .validation import InvalidStart, parameters as resolve_parameters, positive_number, state as resolve_state
 from ..precision import Precision, parse_precision
 
 #: Sliding-phase state (models.coulomb): the eight, the slip speed and direction, the work.
@@ -256,10 +256,11 @@ def solve(
     """
     prec = parse_precision(precision)
     rolling, sliding, all_params = coulomb.body(name)
-    t_end = prec.number(t_end)
-    if not float(t_end) > 0:
-        raise ValueError(f"t_end={t_end} must be > 0")
-    mu = prec.number(friction)
+    t_end = positive_number("t_end", t_end, prec)
+    try:
+        mu = prec.number(friction)
+    except (ValueError, TypeError) as err:
+        raise ValueError(f"friction={friction!r}: {err}; allowed: a Coulomb coefficient >= 0") from None
     if not float(mu) >= 0:
         raise ValueError(f"friction={friction!r} must be >= 0 (the Coulomb coefficient)")
     pars = resolve_parameters(rolling, params, prec)
