@@ -10,7 +10,7 @@ pays about A_s / t steps for that stiffness.
 
 Here the slow solution is built as a formal power series in t, order by order (paper Eqs. 5-7
 through :mod:`models.coulomb`'s sliding rows, evaluated on ``flint.arb_series`` at the run's
-precision plus guard bits, by :class:`verify.proof.equations.VectorField`'s reader):
+precision plus guard bits, by :class:`verify.proof.equations.BallExpressions`):
 
     (k+1) x_{k+1} = [f(x, s, alpha)]_k,    (k+1) s_{k+1} = [A(alpha, x)]_k,
     [s d(alpha)/dt]_k = [B(alpha, x)]_k    (linear in alpha_k, coefficient B_alpha - k s_1),
@@ -30,37 +30,28 @@ order 40), hence :data:`GUARD_BITS` plus two bits per order.
 from __future__ import annotations
 
 import mpmath
-import sympy as sp
 from flint import arb, arb_series, ctx, fmpq
 
 from models import coulomb
 from models.symbols import STATE
 
-from ..proof.equations import VectorField
+from ..proof.equations import BallExpressions
 
 _SLIP, _DIRECTION, _WORK = 8, 9, 10
 #: Guard bits of the series arithmetic over the run's precision.
 GUARD_BITS = 64
 
 
-class _SlidingRates(VectorField):
+class _SlidingRates(BallExpressions):
     """The eight rates, A = e . du/dt, B = e_perp . du/dt and dW/dt = mu g N s on arb_series.
 
     Not d(alpha)/dt = B / s: that quotient is what the series resolves."""
 
     def __init__(self, name: str, par_values: dict):
         _, sliding, parameters = coulomb.body(name)
-        self.params = {p.symbol: par_values[p.name] for p in parameters}
         exprs = list(sliding.rhs[:8]) + [sliding.slip_rate_along, sliding.slip_rate_across, sliding.rhs[_WORK]]
-        self.replacements, self.reduced = sp.cse(exprs)
-        self.symbols = STATE + (coulomb.slip_speed, coulomb.slip_direction)
-
-    def __call__(self, y: list) -> list:
-        env = dict(zip(self.symbols, y))
-        memo = {}
-        for sym, expr in self.replacements:
-            env[sym] = self._eval(expr, env, memo)
-        return [self._eval(e, env, memo) for e in self.reduced]
+        super().__init__(STATE + (coulomb.slip_speed, coulomb.slip_direction), exprs,
+                         {p.symbol: par_values[p.name] for p in parameters})
 
 
 def to_arb(prec, value) -> arb:

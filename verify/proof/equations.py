@@ -1,6 +1,6 @@
 """The model's right-hand side in ball arithmetic: the same sympy expressions heyoka compiles.
 
-:func:`vector_field` turns ``Model.rhs()`` (paper Eqs. 8, 73 for the disk: the derived
+``VectorField`` turns ``Model.rhs()`` (paper Eqs. 8, 73 for the disk: the derived
 Newton-Euler equations) into a function that evaluates them on python-flint's ``arb`` balls
 or on ``arb_series`` (truncated power series with ball coefficients), with the parameters
 as exact rationals.  Every operation is Arb's, so the result encloses the exact value of the
@@ -24,7 +24,30 @@ def exact(value) -> fmpq:
     return fmpq(q.numerator, q.denominator)
 
 
-class VectorField:
+class BallExpressions:
+    """Expressions in given symbols, evaluated on arb or arb_series (exact parameters).
+
+    Parameters
+    ----------
+    symbols : sequence of sympy.Symbol
+        The arguments, in call order.
+    exprs : sequence of sympy.Expr
+        The outputs.
+    params : dict
+        sympy symbol -> exact value (fmpq, or an arb the caller vouches for).
+    """
+
+    def __init__(self, symbols, exprs, params: dict):
+        self.symbols, self.params = tuple(symbols), params
+        self.replacements, self.reduced = sp.cse(list(exprs))
+        self._tape, self._outputs = _Tape.compile(self.symbols, self.replacements, self.reduced, params)
+
+    def __call__(self, y: list) -> list:
+        """The outputs at ``y`` (one arb or arb_series per symbol, series of one length)."""
+        return self._tape.run(y, self._outputs)
+
+
+class VectorField(BallExpressions):
     """f(y) of dy/dt = f(y) for one model and exact parameters, on arb or arb_series.
 
     Parameters
@@ -37,58 +60,97 @@ class VectorField:
 
     def __init__(self, model, params: dict):
         self.model = model
-        self.params = {p.symbol: exact(params[p.name]) for p in model.parameters}
-        exprs = [d for _, d in model.rhs()]
-        self.replacements, self.reduced = sp.cse(exprs)
+        super().__init__(STATE, [d for _, d in model.rhs()],
+                         {p.symbol: exact(params[p.name]) for p in model.parameters})
 
-    def __call__(self, y: list) -> list:
-        """The eight derivatives at ``y`` (eight arb or eight arb_series of one length)."""
-        env = dict(zip(STATE, y))
-        memo = {}
-        for sym, expr in self.replacements:
-            env[sym] = self._eval(expr, env, memo)
-        return [self._eval(e, env, memo) for e in self.reduced]
 
-    def _eval(self, e, env, memo):
-        if e in memo:
-            return memo[e]
+class _Tape:
+    """The sympy tree flattened once into a straight-line program over registers (inputs first).
+
+    Each instruction is (operation, operand registers); constants and parameters are exact arb
+    registers.  Evaluating the program is then a loop over a list instead of a walk over sympy
+    nodes (hashing and recursion dominated the cost before).
+    """
+
+    def __init__(self):
+        self.constants = []   # (register, exact fmpq)
+        self.program = []     # (kind, operands, extra)
+        self.size = 0
+
+    @classmethod
+    def compile(cls, symbols, replacements, reduced, params):
+        tape = cls()
+        tape.size = len(symbols)
+        registers = {sym: i for i, sym in enumerate(symbols)}
+        for sym, expr in replacements:
+            registers[sym] = tape._emit(expr, registers, params)
+        outputs = [tape._emit(e, registers, params) for e in reduced]
+        return tape, outputs
+
+    def _new(self) -> int:
+        self.size += 1
+        return self.size - 1
+
+    def _emit(self, e, registers, params) -> int:
+        if e in registers:
+            return registers[e]
         if e.is_Symbol:
-            if e in env:
-                out = env[e]
-            elif e in self.params:
-                out = arb(self.params[e])
-            else:
+            if e not in params:
                 raise ValueError(f"unknown symbol {e} in the right-hand side")
+            out = self._constant(params[e])
         elif e.is_Rational:
-            out = arb(fmpq(int(e.p), int(e.q)))
-        elif e.is_Add:
-            out = _fold([self._eval(a, env, memo) for a in e.args], lambda a, b: a + b)
-        elif e.is_Mul:
-            out = _fold([self._eval(a, env, memo) for a in e.args], lambda a, b: a * b)
+            out = self._constant(fmpq(int(e.p), int(e.q)))
+        elif e.is_Add or e.is_Mul:
+            operands = [self._emit(a, registers, params) for a in e.args]
+            out = self._new()
+            self.program.append(("add" if e.is_Add else "mul", operands, out))
         elif e.is_Pow:
-            base = self._eval(e.base, env, memo)
+            base = self._emit(e.base, registers, params)
             n = e.exp
-            if n.is_Integer and int(n) > 0:
-                out = base
-                for _ in range(int(n) - 1):
-                    out = out * base
-            elif n.is_Integer and int(n) < 0:
-                p = base
-                for _ in range(-int(n) - 1):
-                    p = p * base
-                out = 1 / p
+            out = self._new()
+            if n.is_Integer and int(n) != 0:
+                self.program.append(("pow", [base], (out, int(n))))
             elif n == sp.Rational(1, 2):
-                out = base.sqrt()
+                self.program.append(("sqrt", [base], out))
             else:
                 raise ValueError(f"power {e} not supported in ball arithmetic here")
-        elif isinstance(e, sp.sin):
-            out = self._eval(e.args[0], env, memo).sin()
-        elif isinstance(e, sp.cos):
-            out = self._eval(e.args[0], env, memo).cos()
+        elif isinstance(e, (sp.sin, sp.cos)):
+            arg = self._emit(e.args[0], registers, params)
+            out = self._new()
+            self.program.append(("sin" if isinstance(e, sp.sin) else "cos", [arg], out))
         else:
             raise ValueError(f"node {e!r} ({type(e).__name__}) is not read into ball arithmetic")
-        memo[e] = out
+        registers[e] = out
         return out
+
+    def _constant(self, q) -> int:
+        out = self._new()
+        self.constants.append((out, q))
+        return out
+
+    def run(self, y: list, outputs: list) -> list:
+        regs = list(y) + [None] * (self.size - len(y))
+        for i, q in self.constants:
+            regs[i] = arb(q)
+        for kind, operands, out in self.program:
+            if kind == "add":
+                regs[out] = _fold([regs[i] for i in operands], lambda a, b: a + b)
+            elif kind == "mul":
+                regs[out] = _fold([regs[i] for i in operands], lambda a, b: a * b)
+            elif kind == "pow":
+                out, n = out
+                base = regs[operands[0]]
+                p = base
+                for _ in range(abs(n) - 1):
+                    p = p * base
+                regs[out] = p if n > 0 else 1 / p
+            elif kind == "sqrt":
+                regs[out] = regs[operands[0]].sqrt()
+            elif kind == "sin":
+                regs[out] = regs[operands[0]].sin()
+            else:
+                regs[out] = regs[operands[0]].cos()
+        return [regs[i] for i in outputs]
 
 
 def _fold(values: list, op):

@@ -2,11 +2,11 @@
 
 Each step from Y (eight balls) over an exact dyadic step h:
 
-1. the Taylor coefficients c_k(Y), k < n, of the flow from Y (:mod:`.taylor`): balls holding
+1. the Taylor coefficients c_k(Y), k <= n, of the flow from Y (:mod:`.taylor`): balls holding
    the exact coefficients of the solution from every point of Y;
-2. an a-priori enclosure B of every such solution over [0, h] (:mod:`.enclosure`);
+2. a validated tube B of every such solution over [0, h] (:mod:`.enclosure`, high-order);
 3. the Lagrange remainder: y_i(h) = sum_{k<n} c_ik h^k + c_in(y(xi_i)) h^n for some xi_i in
-   (0, h), and y(xi_i) ∈ B, so the coefficient c_n computed from B encloses it;
+   (0, h), and y(xi_i) ∈ B, so the coefficient c_n computed over B encloses it;
 4. Y <- sum_{k<n} c_k(Y) h^k + c_n(B) h^n, in Arb.
 
 With ``method="direct"`` the step evaluates the Taylor polynomial on the ball vector Y
@@ -14,9 +14,10 @@ directly (interval Taylor method), so each step's balls grow with |Dphi| (absolu
 the step's Jacobian) instead of the flow's own conditioning: the wrapping effect.  With
 ``method="lohner"`` the set is carried as a point plus a rotated box (:mod:`.lohner`), step 4
 applies to the point only and the rest goes through the flow's enclosed Jacobian.  The step
-size is predicted from the previous step's remainder bound and halved until the enclosure
-validates and the remainder is small enough; times are exact rationals and every output time
-is hit exactly.
+size is predicted from the start's own c_n (the remainder it would make) and shortened until
+the tube validates and the remainder over it is small enough; times are exact rationals, a
+step is a dyadic rational (exact in Arb) except the one that lands on an output time, which
+is that time's exact rational distance (a ball in Arb, which the steps enclose as well).
 """
 from __future__ import annotations
 
@@ -25,11 +26,11 @@ from dataclasses import dataclass
 from dataclasses import field as dc_field
 from fractions import Fraction
 
-from flint import arb, ctx
+from flint import arb, ctx, fmpq
 
 from .enclosure import NoEnclosure
-from .lohner import Parallelepiped, lohner_step
-from .taylor import validated_step
+from .lohner import LohnerExpansion, Parallelepiped
+from .taylor import TaylorExpansion
 
 
 @dataclass
@@ -74,8 +75,8 @@ class Enclosure:
 
 
 def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320,
-            remainder_bits: int | None = None, method: str = "direct", jacobian_order: int = 12,
-            jacobian_prec: int = 64) -> Enclosure:
+            remainder_bits: int | None = None, method: str = "direct", jacobian_order: int = 16,
+            jacobian_prec: int = 64, tube_prec: int = 64, block: int = 16, progress=None) -> Enclosure:
     """Enclose the solution of dy/dt = field(y), y(0) = start, at every time of ``times``.
 
     Parameters
@@ -92,13 +93,19 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
         Arb's working precision in bits.
     remainder_bits : int, optional
         A step's remainder is kept below 2^-remainder_bits relative to the state's size
-        (default ``prec``); the step is halved until it is.
+        (default ``prec``); the step is shortened until it is.
     method : {"direct", "lohner"}
         ``"direct"``: the Taylor polynomial evaluated on the balls (no wrapping control);
         ``"lohner"``: the set carried as a point plus a rotated box (:mod:`.lohner`).
     jacobian_order, jacobian_prec : int
         For ``"lohner"``: Taylor order and working precision of the flow's Jacobian
         (:mod:`.variational`).
+    tube_prec : int
+        Working precision of the tubes (:mod:`.enclosure`).
+    block : int
+        For ``"lohner"``: steps between freezes of the wrapped box (:mod:`.lohner`).
+    progress : callable, optional
+        Called as ``progress(t, enclosure_so_far)`` after each output time.
     """
     from .equations import exact
 
@@ -109,47 +116,40 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     if times[0] != 0 or any(b <= a for a, b in zip(times, times[1:])):
         raise ValueError("times must start at 0 and increase")
     saved = ctx.prec, ctx.cap
-    ctx.prec, ctx.cap = prec, order + 2  # cap: Arb's series length limit (python-flint's default is 10)
+    ctx.prec, ctx.cap = prec, max(order, jacobian_order) + 2  # python-flint's series cap defaults to 10
     try:
         y = [arb(exact(v)) for v in start]
         state = Parallelepiped.point(y) if method == "lohner" else y
-        out = [[b] for b in y]
-        steps = halvings = 0
+        result = Enclosure(t=[Fraction(0)], y=[[b] for b in y], steps=0, order=order, prec=prec)
         now = Fraction(0)
-        h_guess = None
-        for previous, target in zip(times, times[1:]):
-            interval = target - previous
-            h = _dyadic_below(interval, h_guess if h_guess is not None else interval)
+        inflation = 1.0
+        for target in times[1:]:
             while now < target:
+                allowed = _remainder_target(y, remainder_bits, relax=method == "direct")
+                if method == "lohner":
+                    expansion = LohnerExpansion(field, state, order, jacobian_order=jacobian_order,
+                                                jacobian_prec=jacobian_prec, tube_prec=tube_prec, block=block)
+                else:
+                    expansion = TaylorExpansion(field, y, order, tube_prec=tube_prec)
+                h = _step_towards(target - now, 0.9 * expansion.suggested_step(allowed, inflation))
                 while True:
                     try:
-                        allowed = _remainder_target(y, remainder_bits, relax=method == "direct")
-                        if method == "lohner":
-                            state, bound = lohner_step(field, state, h, order, allowed, jacobian_order=jacobian_order,
-                                                       jacobian_prec=jacobian_prec)
-                            y = state.hull()
-                        else:
-                            y, bound = validated_step(field, y, h, order, allowed)
-                            state = y
+                        state, bound = expansion.advance(arb(fmpq(h.numerator, h.denominator)), allowed)
+                        inflation = expansion.inflation(float(h), bound)
                         break
                     except NoEnclosure:
-                        h /= 2
-                        halvings += 1
-                        if h < interval / 2 ** 40:
+                        h = _dyadic_at_most(h / 2)
+                        result.halvings += 1
+                        if h < (target - now) / 2 ** 40:
                             raise RuntimeError(f"no step validated at t = {float(now)}") from None
-                now, steps = now + h, steps + 1
-                # next step: where the remainder would reach the target, from this step's bound (order n)
-                grow = (allowed / max(bound, 1e-300)) ** (1.0 / order)
-                h_next = float(h) * min(2.0, max(0.5, 0.9 * grow))
-                # the next step: interval / 2^j, doubled only where the rest of the interval stays a multiple
-                h_guess = h_next
-                while 2 * h <= h_next and ((target - now) / (2 * h)).denominator == 1:
-                    h *= 2
-                while h > h_next and h > interval / 2 ** 40 and (h / 2) > 0:
-                    h /= 2
-            for row, b in zip(out, y):
+                y = state.hull() if method == "lohner" else state
+                now, result.steps = now + h, result.steps + 1
+            result.t.append(target)
+            for row, b in zip(result.y, y):
                 row.append(b)
-        return Enclosure(t=times, y=out, steps=steps, order=order, prec=prec, halvings=halvings)
+            if progress is not None:
+                progress(target, result)
+        return result
     finally:
         ctx.prec, ctx.cap = saved
 
@@ -164,9 +164,19 @@ def _remainder_target(y: list, remainder_bits: int, relax: bool) -> float:
     return max(floor, max(float(b.rad()) for b in y) / 16) if relax else floor
 
 
-def _dyadic_below(gap: Fraction, guess) -> Fraction:
-    """The largest gap / 2^j (j >= 0) not above ``guess``: steps that land exactly on the output time."""
-    h = gap
-    while h > guess:
-        h /= 2
-    return h
+def _step_towards(remaining: Fraction, suggested: float) -> Fraction:
+    """The next step: all that remains when the suggestion covers it, half of it when it covers more
+    than half (no sliver of a last step), else the suggestion rounded down to a short dyadic."""
+    if suggested >= remaining:
+        return remaining
+    if 2 * suggested >= remaining:
+        return remaining / 2
+    return _dyadic_at_most(Fraction(suggested))
+
+
+def _dyadic_at_most(h: Fraction) -> Fraction:
+    """The largest m / 2^e <= h with an 8-bit m (an exact, short Arb number)."""
+    e = 0
+    while h * 2 ** e < 128:
+        e += 1
+    return Fraction(int(h * 2 ** e), 2 ** e)

@@ -1,4 +1,4 @@
-"""Taylor coefficients of the flow in ball arithmetic, by Picard iteration on truncated series.
+"""Taylor coefficients of the flow in ball arithmetic, and one validated Taylor step.
 
 For dy/dt = f(y), y(0) = y0, the iteration y <- y0 + integral_0^t f(y) on power series
 truncated after t^n fixes one more coefficient per pass: after n + 1 passes the coefficients
@@ -11,15 +11,14 @@ differentiation of the model's expressions, rigorous by inclusion.
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 
-from flint import arb, arb_series, ctx, fmpq
+from flint import arb, arb_series, ctx
 
-from .enclosure import NoEnclosure, a_priori_box
+from .enclosure import NoEnclosure, polynomial_range, taylor_tube
 
 
 def taylor_coefficients(field, start: list, order: int) -> list:
-    """Coefficients c[i][k] ⊇ y_i^(k)(0)/k!, k = 0..order, of the solutions from ``start`` (eight arb).
+    """Coefficients c[i][k] ⊇ y_i^(k)(0)/k!, k = 0..order, of the solutions from ``start`` (balls).
 
     Parameters
     ----------
@@ -32,37 +31,65 @@ def taylor_coefficients(field, start: list, order: int) -> list:
     """
     if ctx.cap < order + 1:
         raise ValueError(f"python-flint's series cap {ctx.cap} would truncate order {order}: set ctx.cap")
-    series = [arb_series([c], prec=1) for c in start]
+    coeffs = [[c] for c in start]
     for length in range(2, order + 2):
-        rates = field([arb_series(s.coeffs(), prec=length - 1) for s in series])
-        series = [arb_series([c] + [_coeff(r, k) / (k + 1) for k in range(length - 1)], prec=length)
-                  for c, r in zip(start, rates)]
-    return [[_coeff(s, k) for k in range(order + 1)] for s in series]
+        rates = field([arb_series(c, prec=length - 1) for c in coeffs])
+        coeffs = [[c] + [r / (k + 1) for k, r in enumerate(_padded(rate, length - 1))]
+                  for c, rate in zip(start, rates)]
+    return coeffs
 
 
-def _coeff(s, k):
-    """The coefficient of t^k (an exact 0 where the series stored fewer terms)."""
+def _padded(s, length: int) -> list:
+    """The first ``length`` coefficients of s (exact zeros where the series stored fewer terms)."""
     c = s.coeffs()
-    from flint import arb
-
-    return c[k] if k < len(c) else arb(0)
+    return c[:length] + [arb(0)] * (length - len(c))
 
 
-def validated_step(field, y, h: Fraction, order: int, allowed: float):
-    """One validated Taylor step of exact size h from the balls y: (balls containing every solution
-    from y at h, the Lagrange remainder's bound), or :class:`NoEnclosure` when the box does not
-    validate or the bound exceeds ``allowed`` (steps 1-4 of :mod:`.integrator`)."""
-    ha = arb(fmpq(h.numerator, h.denominator))
-    coeffs = taylor_coefficients(field, y, order - 1)
-    box = a_priori_box(field, y, ha)
-    rem = [c[order] for c in taylor_coefficients(field, box, order)]
-    bound = max(float(abs(r).upper()) for r in rem) * float(h) ** order
-    if not math.isfinite(bound) or bound > allowed:
-        raise NoEnclosure(f"remainder {bound:.2e} over {float(h):.3g}")
-    new = []
-    for c, r in zip(coeffs, rem):
-        acc = r
-        for k in range(order - 1, -1, -1):
-            acc = acc * ha + c[k]
-        new.append(acc)
-    return new, bound
+class TaylorExpansion:
+    """The Taylor coefficients c_0..c_n of the solutions from a set of starts, and steps from them.
+
+    Parameters
+    ----------
+    field : callable
+        The right-hand side on balls and series.
+    start : list of arb
+        The starting balls (points for Lohner's centre, the whole set for the direct method).
+    order : int
+        n: the polynomial has degree n - 1, the Lagrange remainder is of order n.
+    tube_prec : int
+        Working precision of the tube and the remainder's coefficient (:mod:`.enclosure`).
+    """
+
+    def __init__(self, field, start: list, order: int, *, tube_prec: int = 64):
+        self.field, self.order, self.tube_prec = field, order, tube_prec
+        self.coeffs = taylor_coefficients(field, start, order)
+
+    def suggested_step(self, allowed: float, inflation: float = 1.0) -> float:
+        """The step at which the start's own c_n, times ``inflation``, would make a remainder of
+        ``allowed`` (a predictor: the tube's c_n is larger than the start's, by a factor the
+        integrator learns from the last step, :meth:`inflation`)."""
+        top = max(float(abs(c[self.order]).upper()) for c in self.coeffs) * inflation
+        return math.inf if top == 0 else (allowed / top) ** (1.0 / self.order)
+
+    def inflation(self, h: float, bound: float) -> float:
+        """How much larger the tube's remainder ``bound`` at step h was than the start's c_n h^n."""
+        top = max(float(abs(c[self.order]).upper()) for c in self.coeffs)
+        return 1.0 if top == 0 or h == 0 else max(1.0, bound / (top * h ** self.order))
+
+    def advance(self, h: arb, allowed: float):
+        """(balls holding every solution from the start at time h, the remainder's bound).
+
+        Steps 1-4 of :mod:`.integrator`; raises :class:`NoEnclosure` when no tube validates or the
+        remainder's bound exceeds ``allowed``.
+        """
+        n = self.order
+
+        def expand(box):
+            return taylor_coefficients(self.field, box, n)
+
+        _, tube_top = taylor_tube(expand, self.coeffs, h, prec=self.tube_prec)
+        power = h ** n
+        bound = max(float(abs(t).upper()) for t in tube_top) * float(power.upper())
+        if not math.isfinite(bound) or bound > allowed:
+            raise NoEnclosure(f"remainder {bound:.2e} over {float(h.mid()):.3g}")
+        return [polynomial_range(c[:n], h) + t * power for c, t in zip(self.coeffs, tube_top)], bound

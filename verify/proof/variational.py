@@ -7,7 +7,7 @@ the model's expressions (:class:`~verify.proof.equations.VectorField`, unchanged
 duals, so ``f`` and ``Df V`` come out of one pass.  Values and derivatives may be arb balls or
 arb_series, so the same extended field feeds :func:`~verify.proof.taylor.taylor_coefficients`
 (Taylor coefficients of V from every start in a box) and
-:func:`~verify.proof.enclosure.a_priori_box` (the Lagrange remainder's enclosure).
+:func:`~verify.proof.enclosure.taylor_tube` (the Lagrange remainder's enclosure).
 """
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ from fractions import Fraction
 
 from flint import arb, arb_mat, ctx, fmpq
 
-from .enclosure import a_priori_box
+from .enclosure import polynomial_range, taylor_tube
 from .taylor import taylor_coefficients
 
 DIMENSION = 8
@@ -92,30 +92,50 @@ class VariationalField:
         return out
 
 
-def flow_jacobian(field, box: list, h: Fraction, *, order: int = 12, prec: int = 64) -> arb_mat:
-    """An arb_mat containing ∂y(h)/∂y(0) at every start in ``box`` (eight arb), step h exact.
+class FlowJacobian:
+    """The flow's Jacobian ∂y(h)/∂y(0) enclosed for every start in a box, for any step h.
 
-    Taylor coefficients of V to ``order - 1`` from (box, I), and the Lagrange remainder's
-    coefficient from the a-priori enclosure of (y, V) over [0, h] (as in
-    :mod:`.integrator`), computed at ``prec`` bits: the Jacobian multiplies the set's small
-    parallelepiped only, so its own width matters at its width times the set's.
+    Taylor coefficients of (y, V) from (box, I) to order m, computed once at ``prec`` bits; for a
+    step h, V's Lagrange remainder from c_m over a validated tube of the extended system
+    (:func:`~verify.proof.enclosure.taylor_tube`).  The Jacobian multiplies only the set's small
+    parallelepiped, so its own width matters at its width times the set's: a low order and
+    precision suffice (its width, ~(h/rho)^m, enters the set's growth once per step).
+
+    Raises :class:`~verify.proof.enclosure.NoEnclosure` from :meth:`at` when no tube validates.
     """
-    n = DIMENSION
-    saved = ctx.prec, ctx.cap
-    ctx.prec, ctx.cap = prec, max(ctx.cap, order + 2)
+
+    def __init__(self, field, box: list, *, order: int = 16, prec: int = 64):
+        self.extended, self.order, self.prec = VariationalField(field), order, prec
+        n = DIMENSION
+        saved = ctx.prec, ctx.cap
+        ctx.prec, ctx.cap = prec, max(ctx.cap, order + 2)
+        try:
+            start = list(box) + [arb(1 if i == j else 0) for i in range(n) for j in range(n)]
+            self.coeffs = taylor_coefficients(self.extended, start, order)
+        finally:
+            ctx.prec, ctx.cap = saved
+
+    def at(self, h: arb) -> arb_mat:
+        """An arb_mat containing ∂y(h)/∂y(0) at every start in the box."""
+        n, m = DIMENSION, self.order
+        saved = ctx.prec, ctx.cap
+        ctx.prec, ctx.cap = self.prec, max(ctx.cap, m + 2)
+        try:
+            _, top = taylor_tube(lambda box: taylor_coefficients(self.extended, box, m), self.coeffs, h,
+                                 prec=self.prec)
+            power = h ** m
+            entries = [polynomial_range(c[:m], h) + t * power for c, t in zip(self.coeffs[n:], top[n:])]
+            return arb_mat(n, n, entries)
+        finally:
+            ctx.prec, ctx.cap = saved
+
+
+def flow_jacobian(field, box: list, h: Fraction, *, order: int = 16, prec: int = 64) -> arb_mat:
+    """An arb_mat containing ∂y(h)/∂y(0) at every start in ``box`` (eight arb), step h exact."""
+    saved = ctx.prec
+    ctx.prec = prec
     try:
         ha = arb(fmpq(h.numerator, h.denominator))
-        extended = VariationalField(field)
-        start = list(box) + [arb(1 if i == j else 0) for i in range(n) for j in range(n)]
-        coeffs = taylor_coefficients(extended, start, order - 1)
-        enclosure = a_priori_box(extended, start, ha)
-        rem = [c[order] for c in taylor_coefficients(extended, enclosure, order)]
-        entries = []
-        for c, r in zip(coeffs[n:], rem[n:]):
-            acc = r
-            for k in range(order - 1, -1, -1):
-                acc = acc * ha + c[k]
-            entries.append(acc)
-        return arb_mat(n, n, entries)
     finally:
-        ctx.prec, ctx.cap = saved
+        ctx.prec = saved
+    return FlowJacobian(field, box, order=order, prec=prec).at(ha)
