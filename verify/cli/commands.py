@@ -2,6 +2,7 @@
 reads its arguments, runs, and hands its output to the session."""
 from __future__ import annotations
 
+import math
 import sys
 import time
 
@@ -212,6 +213,8 @@ def cmd_reference(args, session: Session) -> int:
                 session.emit(_dumps({"written": [str(p) for p in written]}))
             say(f"wrote {len(written)} file(s) to {args.export}")
             return 0
+        if args.prove:
+            return _prove(args, directory, say)
         if args.make:
             if args.precision is not None:
                 raise UsageError("--precision is for --check; --make always runs mp:128 and mp:256")
@@ -228,6 +231,36 @@ def cmd_reference(args, session: Session) -> int:
     failed = [c.case for c in checks if not c.ok]
     if failed:
         raise RunFailed(f"{len(failed)} case(s) out of bound: {', '.join(failed)}")
+    return 0
+
+
+def _prove(args, directory, say) -> int:
+    """``reference --prove``: each case of <= 10 s (or those named) enclosed, resuming stored proofs."""
+    from fractions import Fraction
+
+    from ..reference import load_set
+    from ..reference.proved import prove_case, settings_of, write_summary
+
+    precision = args.precision or "mp:128"
+    bits = precision[3:] if precision.startswith("mp:") else ""
+    if not bits.isdigit() or not 64 <= int(bits) <= 4096:
+        raise UsageError(f"--precision {precision!r}: --prove needs mp:BITS with 64 <= BITS <= 4096 (e.g. mp:128)")
+    budget = math.inf if args.budget is None else _positive(args.budget, "--budget", "600")
+    until = None
+    if args.until is not None:
+        try:
+            until = Fraction(args.until)
+        except (ValueError, ZeroDivisionError):
+            raise UsageError(f"--until {args.until!r} is not a number; give a grid time such as 1 or 0.25") from None
+        if until <= 0:
+            raise UsageError(f"--until {args.until!r}: must be a positive time")
+    records = [r for r in load_set(directory, args.case) if args.case or Fraction(r["t_end"]) <= 10]
+    for record in records:
+        proof = prove_case(record, directory=directory, budget=float(budget), until=until,
+                           settings=settings_of(int(bits)), progress=say)
+        say(f"{record['name']}: proved to t = {proof['times'][-1]} of {record['t_end']}"
+            + (f" ({proof['stopped']})" if proof["stopped"] else ""))
+        write_summary(directory)
     return 0
 
 

@@ -75,10 +75,17 @@ def parser() -> argparse.ArgumentParser:
     job = ref.add_mutually_exclusive_group(required=True)
     job.add_argument("--make", action="store_true", help="compute the set at mp:128 and mp:256 (tens of minutes)")
     job.add_argument("--check", action="store_true", help="re-integrate every case and compare with the agreeing digits")
+    job.add_argument("--prove", action="store_true",
+                     help="enclose the cases of <= 10 s in proved balls (verify/proof; minutes to hours; resumes)")
     job.add_argument("--export", default=None, metavar="DIR",
                      help="write every case to DIR in the Euler and the rotation-matrix forms, with a README "
                           "(--format csv or json)")
-    ref.add_argument("--precision", default=None, help="for --check: double (default), long or quad")
+    ref.add_argument("--precision", default=None,
+                     help="for --check: double (default), long or quad; for --prove: mp:BITS (default mp:128)")
+    ref.add_argument("--until", default=None, metavar="T",
+                     help="for --prove: enclose up to this grid time (default: each case's end)")
+    ref.add_argument("--budget", default=None, metavar="SECONDS",
+                     help="for --prove: wall-clock seconds per case for this run (default: none); the next run resumes")
     ref.add_argument("--case", action="append", metavar="NAME", help="only this case (repeatable)")
     ref.add_argument("--jobs", default="2", help="for --make: processes (default 2)")
     ref.add_argument("--dir", default=None, help="the set's folder (default: reports/reference)")

@@ -84,7 +84,8 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     field : VectorField
         The right-hand side in ball arithmetic.
     start : list
-        The exact initial state (eight rationals: strings, Fractions or fmpq).
+        The initial state: eight exact rationals (strings, Fractions or fmpq), or balls (arb) that
+        hold the start (a resumed enclosure's last balls).
     times : list
         Increasing exact output times (rationals), the first 0.
     order : int
@@ -118,8 +119,8 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     saved = ctx.prec, ctx.cap
     ctx.prec, ctx.cap = prec, max(order, jacobian_order) + 2  # python-flint's series cap defaults to 10
     try:
-        y = [arb(exact(v)) for v in start]
-        state = Parallelepiped.point(y) if method == "lohner" else y
+        y = [v if isinstance(v, arb) else arb(exact(v)) for v in start]
+        state = Parallelepiped.from_balls(y) if method == "lohner" else y
         result = Enclosure(t=[Fraction(0)], y=[[b] for b in y], steps=0, order=order, prec=prec)
         now = Fraction(0)
         inflation = 1.0

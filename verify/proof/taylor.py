@@ -40,8 +40,9 @@ def taylor_coefficients(field, start: list, order: int) -> list:
 
 
 def _padded(s, length: int) -> list:
-    """The first ``length`` coefficients of s (exact zeros where the series stored fewer terms)."""
-    c = s.coeffs()
+    """The first ``length`` coefficients of s (exact zeros where the series stored fewer terms; a
+    rate that does not depend on the state comes back as one arb, a constant)."""
+    c = [s] if isinstance(s, arb) else s.coeffs()
     return c[:length] + [arb(0)] * (length - len(c))
 
 

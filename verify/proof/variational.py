@@ -85,7 +85,7 @@ class VariationalField:
     def __call__(self, z: list) -> list:
         n = DIMENSION
         duals = [Dual(z[i], z[n + n * i:n + n * (i + 1)]) for i in range(n)]
-        rates = self.field(duals)
+        rates = [r if isinstance(r, Dual) else Dual(r, [arb(0)] * n) for r in self.field(duals)]  # a constant rate
         out = [r.v for r in rates]
         for r in rates:
             out.extend(r.d)
