@@ -29,7 +29,7 @@ class NoEnclosure(Exception):
 
 
 def unit_interval() -> arb:
-    """[0, 1] as a ball (1/2 ± 1/2, exact)."""
+    """A ball containing [0, 1] (1/2 ± 1/2, the radius rounded up by Arb: a hair wider, which is harmless)."""
     return arb(0.5, 0.5)
 
 

@@ -19,7 +19,10 @@ from models.symbols import STATE
 
 
 def exact(value) -> fmpq:
-    """An exact rational from a decimal or rational string, an int, a Fraction or a sympy Rational."""
+    """An exact rational from a decimal or rational string, an int, a Fraction or a sympy Rational
+    (a float is refused: its shortest decimal is not the number it holds, nor the one meant)."""
+    if isinstance(value, float):
+        raise TypeError(f"{value!r} is a float: give the exact value as a string or a Fraction")
     q = Fraction(str(value)) if not isinstance(value, Fraction) else value
     return fmpq(q.numerator, q.denominator)
 

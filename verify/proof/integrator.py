@@ -1,6 +1,6 @@
 """A validated Taylor integrator: balls that provably contain the exact solution at given times.
 
-Each step from Y (eight balls) over an exact dyadic step h:
+Each step from Y (eight balls) over a step h (an exact rational; a ball in Arb where it is not dyadic):
 
 1. the Taylor coefficients c_k(Y), k <= n, of the flow from Y (:mod:`.taylor`): balls holding
    the exact coefficients of the solution from every point of Y;
@@ -12,12 +12,14 @@ Each step from Y (eight balls) over an exact dyadic step h:
 With ``method="direct"`` the step evaluates the Taylor polynomial on the ball vector Y
 directly (interval Taylor method), so each step's balls grow with |Dphi| (absolute values of
 the step's Jacobian) instead of the flow's own conditioning: the wrapping effect.  With
-``method="lohner"`` the set is carried as a point plus a rotated box (:mod:`.lohner`), step 4
-applies to the point only and the rest goes through the flow's enclosed Jacobian.  The step
+``method="lohner"`` the set is carried as a point plus a sum of parallelepipeds (:mod:`.lohner`),
+step 4 applies to the point only and the rest goes through the flow's enclosed Jacobian.  The step
 size is predicted from the start's own c_n (the remainder it would make) and shortened until
 the tube validates and the remainder over it is small enough; times are exact rationals, a
-step is a dyadic rational (exact in Arb) except the one that lands on an output time, which
-is that time's exact rational distance (a ball in Arb, which the steps enclose as well).
+step is a short dyadic rational (exact in Arb) except near an output time, where it is the
+rest of the way or half of it (exact rationals that Arb holds as balls, and the step encloses
+the solution at every time of that ball: the polynomial is evaluated on it, the tube taken to
+its upper end).
 """
 from __future__ import annotations
 
@@ -97,7 +99,7 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
         (default ``prec``); the step is shortened until it is.
     method : {"direct", "lohner"}
         ``"direct"``: the Taylor polynomial evaluated on the balls (no wrapping control);
-        ``"lohner"``: the set carried as a point plus a rotated box (:mod:`.lohner`).
+        ``"lohner"``: the set carried as a point plus a sum of parallelepipeds (:mod:`.lohner`).
     jacobian_order, jacobian_prec : int
         For ``"lohner"``: Taylor order and working precision of the flow's Jacobian
         (:mod:`.variational`).
@@ -113,6 +115,8 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     if method not in ("direct", "lohner"):
         raise ValueError(f"unknown method {method!r}")
     remainder_bits = prec if remainder_bits is None else remainder_bits
+    if not 16 <= remainder_bits <= 1000:
+        raise ValueError(f"remainder_bits {remainder_bits}: allowed 16 to 1000 (the step control's targets are floats)")
     times = [Fraction(str(t)) for t in times]
     if times[0] != 0 or any(b <= a for a, b in zip(times, times[1:])):
         raise ValueError("times must start at 0 and increase")

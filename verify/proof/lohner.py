@@ -57,12 +57,14 @@ class Parallelepiped:
         return cls([arb(b.mid()) for b in y], [(_identity(n), arb_mat(n, 1, [arb(0, b.rad()) for b in y]))])
 
     def hull(self) -> list:
-        """Eight balls containing the set (the interval sum, used only for output and enclosures)."""
+        """Eight balls containing the set and its centre (the interval sum; the mean-value step needs
+        the segment from the centre to each point inside it, so the centre is joined explicitly
+        rather than left to every box's containing 0)."""
         n = len(self.centre)
         offset = arb_mat(n, 1, [arb(0)] * n)
         for p, b in self.blocks:
             offset = offset + p * b
-        return [c + offset[i, 0] for i, c in enumerate(self.centre)]
+        return [(c + offset[i, 0]).union(c) for i, c in enumerate(self.centre)]
 
 
 def _identity(n: int) -> arb_mat:

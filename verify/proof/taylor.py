@@ -64,6 +64,8 @@ class TaylorExpansion:
     def __init__(self, field, start: list, order: int, *, tube_prec: int = 64):
         self.field, self.order, self.tube_prec = field, order, tube_prec
         self.coeffs = taylor_coefficients(field, start, order)
+        if not all(c.is_finite() for row in self.coeffs for c in row):
+            raise RuntimeError("the Taylor coefficients are unbounded at the step's start (no smaller step helps)")
 
     def suggested_step(self, allowed: float, inflation: float = 1.0) -> float:
         """The step at which the start's own c_n, times ``inflation``, would make a remainder of

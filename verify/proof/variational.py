@@ -112,6 +112,9 @@ class FlowJacobian:
         try:
             start = list(box) + [arb(1 if i == j else 0) for i in range(n) for j in range(n)]
             self.coeffs = taylor_coefficients(self.extended, start, order)
+            if not all(c.is_finite() for row in self.coeffs for c in row):
+                raise RuntimeError("the Jacobian's Taylor coefficients are unbounded on the set's hull "
+                                   "(no smaller step helps)")
         finally:
             ctx.prec, ctx.cap = saved
 

@@ -4,10 +4,11 @@
 * :mod:`.make` -- two MPFR runs per case, the equations' fingerprint, the conditioning;
 * :mod:`.agreement` -- the digits two precisions agree on (agreement, not proof);
 * :mod:`.store` -- the JSON format, the index and the README;
-* :mod:`.check` -- re-integrate at double, long or quad and compare within the argued bound.
+* :mod:`.check` -- re-integrate at double, long or quad and compare within the argued bound;
+* :mod:`.proved` -- proved enclosures of the cases (``reference --prove``), beside the agreed digits.
 
-``python -m verify reference --make`` writes the set; ``--check`` verifies an integrator
-(this suite's, at a working precision) against it.
+``python -m verify reference --make`` writes the set; ``--prove`` encloses it; ``--check``
+verifies an integrator (this suite's, at a working precision) against both.
 """
 from __future__ import annotations
 
@@ -65,9 +66,12 @@ def check_set(precision: str = "double", names=None, directory: Path = DIRECTORY
     """:func:`check_case` for every case of the stored set (or those named)."""
     if precision not in CHECK_PRECISIONS:
         raise ValueError(f"--precision {precision!r}; allowed: {', '.join(CHECK_PRECISIONS)}")
+    from .proved import load_proofs
+
+    proofs = load_proofs(directory)
     out = []
     for record in load_set(directory, names):
-        out.append(check_case(record, precision))
+        out.append(check_case(record, precision, proofs=proofs.get(record["name"])))
         if progress:
             progress(f"  {record['name']} {precision}: ratio {out[-1].ratio:.2e}")
     return out

@@ -24,6 +24,12 @@ The row sums and P_i come with the case file (variational equations).  To this t
 uncertainty ``abs_error`` is added.  A check passes when every value of every grid time is
 within its bound; the ratio error / bound is what is reported (typically 1e-3 to 1e-1: the
 bound is a bound, not an estimate).
+
+Where the case has proved enclosures (:mod:`.proved`), the run is also measured against them:
+its distance from each proved ball (0 inside it), in units of the same bound without
+``abs_error`` (the ball is proved, not agreed, so no allowance is added for it).  A run at a
+working precision cannot land inside a ball 10^-30 wide; what it must do is come within its own
+error bound of it.  A check passes only when both ratios are at most 1.
 """
 from __future__ import annotations
 
@@ -63,17 +69,24 @@ class CaseCheck:
     reference_share: float
     ok: bool
     message: str = ""
+    proof_ratio: Optional[float] = None
+    proof_where: str = ""
 
     def to_record(self) -> dict:
-        return {"case": self.case, "precision": self.precision, "steps": self.steps, "ratio": float(f"{self.ratio:.3e}"),
-                "where": self.where, "error": float(f"{self.error:.3e}"), "bound": float(f"{self.bound:.3e}"),
-                "reference_share": round(self.reference_share, 3), "ok": self.ok, "message": self.message}
+        out = {"case": self.case, "precision": self.precision, "steps": self.steps, "ratio": float(f"{self.ratio:.3e}"),
+               "where": self.where, "error": float(f"{self.error:.3e}"), "bound": float(f"{self.bound:.3e}"),
+               "reference_share": round(self.reference_share, 3), "ok": self.ok, "message": self.message}
+        if self.proof_ratio is not None:
+            out.update(proof_ratio=float(f"{self.proof_ratio:.3e}"), proof_where=self.proof_where)
+        return out
 
 
-def check_case(record: dict, precision: str = "double", params: Optional[dict] = None) -> CaseCheck:
+def check_case(record: dict, precision: str = "double", params: Optional[dict] = None,
+               proofs: Optional[list] = None) -> CaseCheck:
     """Integrate the case of ``record`` at ``precision`` and compare every value with the reference.
 
-    ``params`` overrides parameters (decimal strings): only for negative controls.
+    ``params`` overrides parameters (decimal strings): only for negative controls.  ``proofs``:
+    the case's proved enclosures (:func:`.proved.load_proofs`), measured against as well.
     """
     prec = parse_precision(precision)
     name = record["name"]
@@ -108,15 +121,42 @@ def check_case(record: dict, precision: str = "double", params: Optional[dict] =
                 if ratio > worst[0]:
                     worst = (ratio, f"{n} at t = {grid[j]}", float(err), float(bound), float(ref_err / bound))
     ratio, where, error, bound, share = worst
-    return CaseCheck(name, prec.name, sol.steps, ratio, where, error, bound, share, ratio <= 1.0)
+    proof_ratio, proof_where = _against_proofs(record, proofs or [], sol, prec, root_n, r_star, scale)
+    ok = ratio <= 1.0 and (proof_ratio is None or proof_ratio <= 1.0)
+    return CaseCheck(name, prec.name, sol.steps, ratio, where, error, bound, share, ok,
+                     proof_ratio=proof_ratio, proof_where=proof_where)
+
+
+def _against_proofs(record, proofs, sol, prec, root_n, r_star, scale):
+    """The largest distance of the run from a proved ball over the run's own bound, and where."""
+    if not proofs:
+        return None, ""
+    grid = record["grid"]
+    worst, where = 0.0, ""
+    with mpmath.workprec(max(320, 4 * max(p["settings"]["prec"] for p in proofs))):
+        eps = mpmath.mpf(2) ** (1 - prec.bits)
+        for proof in proofs:
+            for j, t in enumerate(proof["times"]):
+                index = grid.index(t)
+                for i, n in enumerate(STATE_NAMES):
+                    mid = mpmath.mpf(proof["state"][n]["mid"][j])
+                    rad = mpmath.mpf(proof["state"][n]["rad"][j])
+                    gap = max(abs(prec.to_mpf(sol.y[i, index]) - mid) - rad, 0)
+                    bound = eps * (root_n * r_star[index] * scale + record["conditioning"]["parameter_term"][n][index]
+                                   + abs(mid))
+                    ratio = float(gap / bound)
+                    if ratio > worst or not where:
+                        worst, where = ratio, f"{n} at t = {t} ({proof['settings']['prec']}-bit proof)"
+    return worst, where
 
 
 def render_checks(checks: list) -> str:
     """A plain-text table of checks (what ``reference --check`` prints)."""
     lines = [f"{'case':<28} {'precision':<9} {'steps':>6} {'error/bound':>12}  {'worst value':<26} "
-             f"{'error':>9} {'bound':>9} {'ref share':>9}  result"]
+             f"{'error':>9} {'bound':>9} {'ref share':>9} {'proof gap/bound':>15}  result"]
     for c in checks:
         result = "ok" if c.ok else ("FAIL " + c.message if c.message else "FAIL")
+        proof = "-" if c.proof_ratio is None else f"{c.proof_ratio:.3e}"
         lines.append(f"{c.case:<28} {c.precision:<9} {c.steps:>6} {c.ratio:>12.3e}  {c.where:<26} "
-                     f"{c.error:>9.2e} {c.bound:>9.2e} {c.reference_share:>9.3f}  {result}")
+                     f"{c.error:>9.2e} {c.bound:>9.2e} {c.reference_share:>9.3f} {proof:>15}  {result}")
     return "\n".join(lines)

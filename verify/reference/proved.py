@@ -24,7 +24,7 @@ from __future__ import annotations
 import json
 import math
 import time
-from decimal import ROUND_CEILING, Decimal
+from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
 
@@ -89,6 +89,11 @@ def prove_case(record: dict, *, directory: Path = DIRECTORY, budget: float = mat
     path = proof_path(directory, name, settings["prec"])
     stop = Fraction(record["t_end"] if until is None else str(until))
     grid = [s for s in record["grid"] if Fraction(s) <= stop]
+    from .make import equations_fingerprint
+
+    if record["model"]["equations_sha256"] != equations_fingerprint(record["model"]["name"]):
+        raise ValueError(f"{name}: the model's equations changed since the case was made (equations_sha256 "
+                         "differs); run 'python -m verify reference --make' first")
     proof = _resumable(path, record, case_file, settings)
     field, start = case_problem(record)
     if proof is None:
@@ -105,6 +110,8 @@ def prove_case(record: dict, *, directory: Path = DIRECTORY, budget: float = mat
     times = [Fraction(s) - offset for s in grid[done - 1:]]
     if done > 1:
         proof["resumed_at"].append(proof["times"][-1])
+    proof.setdefault("segments", []).append({"from": proof["times"][-1], "source_commit": source_commit()["commit"],
+                              "python-flint": _versions()["python-flint"]})
 
     def keep(t, enclosure):
         j = len(enclosure.t) - 1
@@ -140,7 +147,7 @@ def _new_proof(record: dict, case_file: Path, settings: dict) -> dict:
     return {"format": FORMAT, "case": record["name"], "case_sha256": file_sha256(case_file),
             "equations_sha256": record["model"]["equations_sha256"], "statement": STATEMENT,
             "settings": settings, "t_end": record["t_end"], "complete": False, "stopped": None,
-            "resumed_at": [], "steps": 0, "wall_seconds": 0.0, "times": [],
+            "resumed_at": [], "segments": [], "steps": 0, "wall_seconds": 0.0, "times": [],
             "state": {n: {"mid": [], "rad": []} for n in STATE_NAMES}, "proved_digits": {n: [] for n in STATE_NAMES},
             "proved_digits_min": [],
             "provenance": {"versions": _versions(), "source_commit": source_commit()["commit"]}}
@@ -187,19 +194,28 @@ def _append_exact(proof: dict, time_text: str, start: list) -> None:
 
 
 def decimal_ball(b: arb, prec: int) -> tuple:
-    """(mid, rad) decimal strings whose interval contains the ball ``b``; checked in Arb."""
-    saved = ctx.prec
-    ctx.prec = prec + 64
-    try:
-        digits = max(10, min(int(prec * 0.30103) + 3, _digits_needed(b) + 6))
-        mid = b.mid().str(digits, radius=False) if b.mid() != 0 else "0"
-        gap = b.rad() + abs(arb(mid) - b.mid())
-        rad = _round_up(gap)
-        if not (arb(mid) + arb(0, arb(rad).upper())).contains(b) and not arb(mid).contains(b):
-            raise ArithmeticError(f"decimal ball {mid} +/- {rad} does not contain {b}")
-        return mid, rad
-    finally:
-        ctx.prec = saved
+    """(mid, rad) decimal strings whose interval [mid - rad, mid + rad] contains the ball ``b``.
+
+    In exact rational arithmetic: the ball's ends are read exactly (Arb's midpoint and radius are
+    binary floating-point numbers), mid is the midpoint to the digits worth keeping, rad the
+    distance to the farther end rounded up to two significant digits, and the containment is
+    checked exactly before the strings are returned.
+    """
+    lower, upper = exact_fraction(b.lower()), exact_fraction(b.upper())
+    digits = max(10, min(int(prec * 0.30103) + 3, _digits_needed(b) + 6))
+    mid = "0" if b.mid() == 0 else b.mid().str(digits, radius=False)
+    centre = Fraction(Decimal(mid))
+    rad = _round_up(max(upper - centre, centre - lower, Fraction(0)))
+    if not (centre - Fraction(Decimal(rad)) <= lower and upper <= centre + Fraction(Decimal(rad))):
+        raise ArithmeticError(f"decimal ball {mid} +/- {rad} does not contain {b}")
+    return mid, rad
+
+
+def exact_fraction(point: arb) -> Fraction:
+    """The exact value of an arb of radius 0 (an end from ``lower()``/``upper()``)."""
+    man, exp = point.mid().man_exp()
+    man, exp = int(man), int(exp)
+    return Fraction(man * 2 ** exp) if exp >= 0 else Fraction(man, 2 ** -exp)
 
 
 def _digits_needed(b: arb) -> int:
@@ -209,14 +225,26 @@ def _digits_needed(b: arb) -> int:
     return max(1, int(math.log10(mid / rad)) + 1)
 
 
-def _round_up(x: arb) -> str:
-    """A 2-significant-digit decimal >= the upper end of x (>= 0)."""
-    upper = float(x.upper())
-    if upper == 0:
+def _round_up(x: Fraction) -> str:
+    """The least 2-significant-digit decimal >= x >= 0, in exact arithmetic."""
+    if x == 0:
         return "0"
-    upper = math.nextafter(upper, math.inf)
-    exponent = Decimal(upper).adjusted() - 1
-    return str(Decimal(upper).scaleb(-exponent).to_integral_value(ROUND_CEILING).scaleb(exponent))
+    exponent = len(str(x.numerator // x.denominator)) - 2 if x >= 1 else -_leading_zeros(x) - 2
+    scaled = x / Fraction(10) ** exponent  # in [10, 100) up to one decade
+    digits = -(-scaled.numerator // scaled.denominator)
+    while digits >= 100:
+        exponent += 1
+        scaled = x / Fraction(10) ** exponent
+        digits = -(-scaled.numerator // scaled.denominator)
+    return f"{digits}e{exponent}"
+
+
+def _leading_zeros(x: Fraction) -> int:
+    """For 0 < x < 1: the k with 10^-(k+1) <= x < 10^-k."""
+    k = 0
+    while x * 10 ** (k + 1) < 1:
+        k += 1
+    return k
 
 
 def _balls_at(proof: dict, j: int, prec: int) -> list:
@@ -273,26 +301,23 @@ def claims(record: dict, proof: dict) -> dict:
     ``proved``: the ball lies inside value ± abs_error, so the stored claim |value - exact| <=
     abs_error is now proved; ``consistent``: they overlap (the ball is wider than abs_error);
     ``contradicted``: they are disjoint, the stored digits are wrong (never expected: a finding).
+    Decided in exact rational arithmetic (every end is a decimal string).
     """
     out = {"proved": 0, "consistent": 0, "contradicted": 0, "contradictions": []}
-    saved = ctx.prec
-    ctx.prec = 4 * proof["settings"]["prec"]
-    try:
-        for j, t in enumerate(proof["times"]):
-            index = record["grid"].index(t)
-            for n in STATE_NAMES:
-                b = ball(proof, n, j, ctx.prec)
-                value = arb(record["state"][n]["value"][index])
-                allowed = arb(record["state"][n]["abs_error"][index])
-                if (value + arb(0, allowed.upper())).contains(b):
-                    out["proved"] += 1
-                elif (value + arb(0, allowed.upper())).overlaps(b):
-                    out["consistent"] += 1
-                else:
-                    out["contradicted"] += 1
-                    out["contradictions"].append(f"{n} at t = {t}")
-    finally:
-        ctx.prec = saved
+    for j, t in enumerate(proof["times"]):
+        index = record["grid"].index(t)
+        for n in STATE_NAMES:
+            mid = Fraction(Decimal(proof["state"][n]["mid"][j]))
+            rad = Fraction(Decimal(proof["state"][n]["rad"][j]))
+            value = Fraction(Decimal(record["state"][n]["value"][index]))
+            allowed = Fraction(Decimal(record["state"][n]["abs_error"][index]))
+            if value - allowed <= mid - rad and mid + rad <= value + allowed:
+                out["proved"] += 1
+            elif mid - rad <= value + allowed and value - allowed <= mid + rad:
+                out["consistent"] += 1
+            else:
+                out["contradicted"] += 1
+                out["contradictions"].append(f"{n} at t = {t}")
     return out
 
 

@@ -46,6 +46,7 @@ class JobOutput:
 def registry() -> list:
     """Every job of the report, in the order the report presents their results."""
     from ..claims import SECTION_MODULES
+    from ..reference.proved import proved_directory
     from ..reference.store import DIRECTORY, read_index
     from ..studies.conservation import conservation_models
     from ..studies.retrograde import MECHANISMS
@@ -72,8 +73,9 @@ def registry() -> list:
         groups = [[e] for e in index["cases"]] if precision == "quad" else [index["cases"]]
         for group in groups:
             label = group[0]["name"] if len(group) == 1 else "all"
+            proofs = [str(p) for e in group for p in sorted(proved_directory().glob(f"{e['name']}.*bit.json"))]
             jobs.append(Job(f"reference/{precision}/{label}", "reference_job", (precision, [e["name"] for e in group]),
-                            ("verify.reference",), (index_file, *(str(DIRECTORY / e["file"]) for e in group))))
+                            ("verify.reference",), (index_file, *(str(DIRECTORY / e["file"]) for e in group), *proofs)))
     return jobs
 
 

@@ -125,7 +125,8 @@ def sections(results: dict, benchmarks: Optional[dict]) -> list:
     out += guarded("Conservation", conservation)
     out += guarded("Stability thresholds", lambda: _split_h2(render_studies(studies), alts))
     out += guarded("Reference trajectories", lambda: _split_h2("\n".join(
-        render_reference(studies["reference"]["index"], studies["reference"]["checks"]))))
+        render_reference(studies["reference"]["index"], studies["reference"]["checks"],
+                         studies["reference"].get("proved")))))
     out += guarded("Retrograde turn", lambda: _split_h2("\n".join(render_retrograde(studies["retrograde"])), alts))
     if studies.get("friction") is not None:  # absent from a results.json made before the section
         out += guarded("Friction", lambda: _split_h2("\n".join(render_friction(studies["friction"],

@@ -1,14 +1,16 @@
-"""REPORT.md's section on the reference set, rendered from its index (reports/reference/index.json)
-and the records of ``reference --check`` at each precision."""
+"""REPORT.md's section on the reference set, rendered from its index (reports/reference/index.json),
+the proved enclosures' index (reports/reference/proved/index.json) and the records of
+``reference --check`` at each precision."""
 from __future__ import annotations
 
 from ..reference.check import CaseCheck
 
 
-def render_markdown(index: dict, checks: dict) -> list:
-    """The report's section on the reference set: the cases and ``reference --check`` at each precision.
+def render_markdown(index: dict, checks: dict, proved=None) -> list:
+    """The report's section on the reference set: the cases, their proofs and ``reference --check``.
 
-    ``checks`` maps a precision name to its list of :class:`CaseCheck` (or their records).
+    ``checks`` maps a precision name to its list of :class:`CaseCheck` (or their records);
+    ``proved`` is the proved enclosures' summary rows (None: none were made).
     """
     recs = {p: [c.to_record() if isinstance(c, CaseCheck) else c for c in cs] for p, cs in checks.items()}
     lines = [
@@ -39,17 +41,23 @@ def render_markdown(index: dict, checks: dict) -> list:
                   + ", ".join(f"{n} keeps {d} (row sum {r:.2g})" for n, d, r in long_)
                   + ": the flows are integrable, so the transition matrix grows about linearly with time and "
                     "costs about one digit per decade of it.", "",
+              *_proved_lines(proved),
               "**`python -m verify reference --check`**: every case re-integrated by the suite at a working precision, "
               "the largest error against the agreed values in units of the bound eps (sqrt(N) R* Y + P + |y|) + "
               "abs_error (verify/reference/check.py), and how much of that bound at the worst point is the reference's "
-              "own uncertainty.", "",
-              "| precision | cases | within bound | largest error / bound | at | median error / bound |",
-              "|---|---:|---:|---:|---|---:|"]
+              "own uncertainty; and the largest distance from a proved ball in units of the same bound without "
+              "abs_error.", "",
+              "| precision | cases | within bound | largest error / bound | at | median error / bound "
+              "| largest proof gap / bound |",
+              "|---|---:|---:|---:|---|---:|---:|"]
     for p, cs in recs.items():
         worst = max(cs, key=lambda c: c["ratio"])
         ratios = sorted(c["ratio"] for c in cs)
+        gaps = [c["proof_ratio"] for c in cs if c.get("proof_ratio") is not None]
         lines.append(f"| {p} | {len(cs)} | {sum(c['ok'] for c in cs)} | {worst['ratio']:.2e} | {worst['case']}: "
-                     f"{worst['where']} | {ratios[len(ratios) // 2]:.2e} |")
+                     f"{worst['where']} | {ratios[len(ratios) // 2]:.2e} | {max(gaps):.2e} ({len(gaps)} cases) |"
+                     if gaps else f"| {p} | {len(cs)} | {sum(c['ok'] for c in cs)} | {worst['ratio']:.2e} | "
+                     f"{worst['case']}: {worst['where']} | {ratios[len(ratios) // 2]:.2e} | – |")
     lines += ["", "Per case:", "", "| case | " + " | ".join(f"{p}: error / bound" for p in recs) + " |",
               "|---|" + "---:|" * len(recs)]
     names = [c["case"] for c in next(iter(recs.values()))]
@@ -60,3 +68,32 @@ def render_markdown(index: dict, checks: dict) -> list:
             cells.append(f"{c['ratio']:.2e}" + ("" if c["ok"] else " FAIL"))
         lines.append(f"| {n} | " + " | ".join(cells) + " |")
     return lines
+
+
+def _proved_lines(proved) -> list:
+    """The proved enclosures: per case, how far and how many digits, beside the agreed ones."""
+    if not proved:
+        return []
+    by_case = {}
+    for row in proved:
+        by_case.setdefault(row["case"], {})[row["bits"]] = row
+
+    def digits(row, key):
+        entry = row and row[key]
+        return "–" if not entry or entry["proved_digits_min"] is None else f"{entry['proved_digits_min']:.1f}"
+
+    lines = ["**Proved enclosures** (`python -m verify reference --prove`, reports/reference/proved/): balls that "
+             "contain the exact solution of each case's equations from its exact start (verify/proof: a validated "
+             "Taylor integrator in Arb ball arithmetic), at 128 bits to each case's end and at 256 bits to 1 s. "
+             "Digits are proved significant digits, the fewest over the components; 'agreed' is the case file's. "
+             "'Contradicted' counts stored values whose claim |value - exact| <= abs_error the proof refutes.", "",
+             "| case | 128-bit proof reaches (s) | digits at 1 s: 256-bit / 128-bit / agreed | digits at the end of "
+             "the 128-bit proof / agreed | contradicted |", "|---|---|---|---|---:|"]
+    for case, rows in by_case.items():
+        low, high = rows.get(128), rows.get(256)
+        agreed_1 = (low or high)["at_1s"]["agreed_digits_min"] if (low or high)["at_1s"] else "–"
+        end = (f"{digits(low, 'at_last')} / {low['at_last']['agreed_digits_min']}" if low else "–")
+        lines.append(f"| {case} | {low['t_proved'] + ' of ' + low['t_end'] if low else '–'} | {digits(high, 'at_1s')} / "
+                     f"{digits(low, 'at_1s')} / {agreed_1} | {end} | "
+                     f"{sum(r['claims_contradicted'] for r in rows.values())} |")
+    return lines + [""]

@@ -53,7 +53,8 @@ def assemble(outcomes: dict) -> dict:
     studies = {"thresholds": [row for rows in data("thresholds/") for row in rows], "captions": one("studies/captions"),
                "spindown": one("studies/spindown"), "precision": one("studies/precision"), "maps": data("maps/"),
                "dissipation": one("dissipation"), "retrograde": retro,
-               "reference": {"index": read_index(), "checks": checks}, "friction": friction}
+               "reference": {"index": read_index(), "checks": checks, "proved": _proved_summary()},
+               "friction": friction}
     failures = [{"job": name, "error": o.error} for name, o in outcomes.items() if o.status == "failed"]
     eqs, figs = missing()
     out = {"summary": None, "claims": claims, "conservation": [row for rows in data("conservation/") for row in rows],
@@ -65,3 +66,13 @@ def assemble(outcomes: dict) -> dict:
     except (KeyError, TypeError, IndexError, ValueError) as err:  # a job it reads failed: say so, keep the rest
         failures.append({"job": "summary", "error": f"{type(err).__name__}: {err} (a job it reads failed)"})
     return out
+
+
+def _proved_summary():
+    """The proved enclosures' index (reports/reference/proved/index.json), or None where none were made."""
+    import json
+
+    from ..reference.proved import proved_directory
+
+    path = proved_directory() / "index.json"
+    return json.loads(path.read_text())["proofs"] if path.exists() else None
