@@ -10,6 +10,7 @@ import json
 import shutil
 import subprocess
 import sys
+from decimal import Decimal, localcontext
 from fractions import Fraction
 from pathlib import Path
 
@@ -59,7 +60,9 @@ def test_a_ball_moved_off_the_stored_value_is_a_contradiction():
     record = read_case(DIRECTORY / "disk-standard-1.json")
     moved = json.loads(json.dumps(proof))
     mids = moved["state"]["theta"]["mid"]
-    mids[-1] = str(Fraction(mids[-1]) + Fraction(1, 10 ** 20))
+    with localcontext() as exact:
+        exact.prec = 200
+        mids[-1] = str(Decimal(mids[-1]) + Decimal("1e-20"))
     assert claims(record, moved)["contradicted"] == 1
 
 
@@ -94,6 +97,19 @@ def test_a_run_comes_within_its_bound_of_the_proof_and_a_perturbed_one_does_not(
     good = check_case(record, "double", proofs=proofs)
     assert good.ok and good.proof_ratio is not None and good.proof_ratio <= 1, good
     wrong = check_case(record, "double", params={"g": "980.0001"}, proofs=proofs)
+    assert wrong.proof_ratio > 1, wrong
+
+
+def test_an_mpfr_run_lands_within_its_bound_of_the_proofs_and_a_perturbed_one_does_not():
+    """The MPFR runs and the enclosures agree: an MPFR-128 run of disk-standard-1 comes within its own
+    bound (~1e-32) of every 128- and 256-bit proved ball; with g changed by 1e-25 relative, a change no
+    run at 53 or 113 bits could see, it does not."""
+    record = read_case(DIRECTORY / "disk-standard-1.json")
+    proofs = load_proofs()["disk-standard-1"]
+    assert {p["settings"]["prec"] for p in proofs} >= {128, 256}
+    good = check_case(record, "mp:128", proofs=proofs)
+    assert good.ok and good.proof_ratio <= 1, good
+    wrong = check_case(record, "mp:128", params={"g": "980.0000000000000000000001"}, proofs=proofs)
     assert wrong.proof_ratio > 1, wrong
 
 

@@ -81,7 +81,7 @@ def parser() -> argparse.ArgumentParser:
                      help="write every case to DIR in the Euler and the rotation-matrix forms, with a README "
                           "(--format csv or json)")
     ref.add_argument("--precision", default=None,
-                     help="for --check: double (default), long or quad; for --prove: mp:BITS (default mp:128)")
+                     help="for --check: double (default), long, quad or mp:BITS; for --prove: mp:BITS (default mp:128)")
     ref.add_argument("--until", default=None, metavar="T",
                      help="for --prove: enclose up to this grid time (default: each case's end)")
     ref.add_argument("--budget", default=None, metavar="SECONDS",

@@ -64,8 +64,10 @@ def _cost(c: ReferenceCase) -> float:
 
 def check_set(precision: str = "double", names=None, directory: Path = DIRECTORY, progress=None) -> list:
     """:func:`check_case` for every case of the stored set (or those named)."""
-    if precision not in CHECK_PRECISIONS:
-        raise ValueError(f"--precision {precision!r}; allowed: {', '.join(CHECK_PRECISIONS)}")
+    bits = precision[3:] if precision.startswith("mp:") else ""
+    if precision not in CHECK_PRECISIONS and not (bits.isdigit() and 64 <= int(bits) <= 512):
+        raise ValueError(f"--precision {precision!r}; allowed: {', '.join(CHECK_PRECISIONS)} or mp:BITS "
+                         "(64 <= BITS <= 512: an MPFR run measured against the agreed digits and the proved balls)")
     from .proved import load_proofs
 
     proofs = load_proofs(directory)

@@ -34,7 +34,7 @@ from models.symbols import STATE_NAMES
 
 from ..provenance import source_commit, versions, write_atomic
 from .agreement import digits_of
-from .store import DIRECTORY, file_sha256, read_index
+from .store import DIRECTORY, file_sha256, read_index, read_json
 
 FORMAT = "rolling-verify proved enclosures, format 1"
 INDEX_FORMAT = "rolling-verify proved enclosures index, format 1"
@@ -268,14 +268,7 @@ def ball(proof: dict, component: str, j: int, prec: int = 320) -> arb:
 
 
 def read_proof(path: Path) -> dict:
-    path = Path(path)
-    try:
-        proof = json.loads(path.read_text())
-    except json.JSONDecodeError as err:
-        raise ValueError(f"{path} is not valid JSON ({err})") from None
-    if proof.get("format") != FORMAT:
-        raise ValueError(f"{path} has format {proof.get('format')!r}; this reader understands {FORMAT!r}")
-    return proof
+    return read_json(path, FORMAT, "no proof file {path}; run 'python -m verify reference --prove'")
 
 
 def load_proofs(directory: Path = DIRECTORY) -> dict:
@@ -324,13 +317,19 @@ def claims(record: dict, proof: dict) -> dict:
 def summary(record: dict, proof: dict) -> dict:
     """One proof's line of the index: how far, how wide (at 1 s and at its last time), how long, the claims."""
     def at(t_text):
+        """Digits at one time, the fewest over the components that are not agreed zeros (as the case
+        index counts them: a component whose runs agree it is 0 to within abs_error has no significant
+        digits), each with its component."""
         if t_text not in proof["times"]:
             return None
         j, index = proof["times"].index(t_text), record["grid"].index(t_text)
-        agreed = [record["state"][n]["digits"][index] for n in STATE_NAMES]
-        agreed = [d for d in agreed if d is not None]
-        return {"t": t_text, "proved_digits_min": proof["proved_digits_min"][j],
-                "agreed_digits_min": min(agreed) if agreed else None}
+        counted = [n for n in STATE_NAMES if not _agreed_zero(record["state"][n], index)]
+        agreed = {n: record["state"][n]["digits"][index] for n in counted}
+        proved = {n: proof["proved_digits"][n][j] for n in counted if proof["proved_digits"][n][j] is not None}
+        weakest = min(proved, key=proved.get, default=None)
+        least = min(agreed, key=agreed.get, default=None)
+        return {"t": t_text, "proved_digits_fewest": proved[weakest] if weakest else None, "proved_weakest": weakest,
+                "agreed_digits_fewest": agreed[least] if least else None, "agreed_weakest": least}
 
     one = next((t for t in proof["times"] if Fraction(t) == 1), None)
     verdict = claims(record, proof)
@@ -343,6 +342,12 @@ def summary(record: dict, proof: dict) -> dict:
             "file": f"{proof['case']}.{proof['settings']['prec']}bit.json"}
 
 
+def _agreed_zero(column: dict, index: int) -> bool:
+    """The case file's rule (:func:`.store.final_summary`): no digits, or 0 digits of a value within abs_error of 0."""
+    digits = column["digits"][index]
+    return digits is None or (digits == 0 and abs(column["double"][index]) <= float(column["abs_error"][index]))
+
+
 def write_summary(directory: Path = DIRECTORY) -> dict:
     """Rewrite ``proved/index.json`` and ``proved/README.md`` from the proof files on disk."""
     from .store import read_case
@@ -352,7 +357,12 @@ def write_summary(directory: Path = DIRECTORY) -> dict:
     for name, items in proofs.items():
         record = read_case(Path(directory) / f"{name}.json")
         rows.extend(summary(record, p) for p in sorted(items, key=lambda p: p["settings"]["prec"]))
-    index = {"format": INDEX_FORMAT, "statement": STATEMENT, "proofs": rows}
+    index = {"format": INDEX_FORMAT, "statement": STATEMENT,
+             "digits": "at_1s and at_last: proved_digits_fewest is the fewest significant digits the balls prove "
+                       "(log10 |mid|/rad) and agreed_digits_fewest the fewest the case file's runs agree on, each over "
+                       "the components that are not agreed zeros (the case index's rule), with the component; a proof "
+                       "file's own proved_digits_min is over every component whose ball excludes 0",
+             "proofs": rows}
     folder = proved_directory(directory)
     folder.mkdir(parents=True, exist_ok=True)
     write_atomic(folder / "index.json", json.dumps(index, indent=1) + "\n")
@@ -364,7 +374,7 @@ def _readme(rows: list) -> str:
     def digits(entry):
         if entry is None:
             return "–"
-        p, a = entry["proved_digits_min"], entry["agreed_digits_min"]
+        p, a = entry["proved_digits_fewest"], entry["agreed_digits_fewest"]
         return f"{'–' if p is None else f'{p:.1f}'} / {'–' if a is None else a}"
 
     lines = [f"| `{r['case']}` | {r['bits']} | {r['t_proved']} of {r['t_end']} | {digits(r['at_1s'])} | "
@@ -377,9 +387,10 @@ The enclosures come from `verify/proof/` (a validated Taylor integrator in Arb b
 python-flint): a high-order tube validates each step, the Lagrange remainder is bounded on it,
 and the mean-value form with deferred wrapping carries the errors (`verify/proof/lohner.py`).
 
-Digits are significant digits, min over the components whose ball excludes 0: proved (log10
-|mid|/rad of the ball) / agreed (the case file's digits, on which its MPFR-128 and MPFR-256 runs
-agree). Claims: the stored values' claim |value − exact| ≤ abs_error at every proved component and
+Digits are significant digits, the fewest over the components that are not agreed zeros (the
+case index's rule: a component whose runs agree it is 0 to within abs_error has none): proved
+(log10 |mid|/rad of the ball) / agreed (the case file's digits, on which its MPFR-128 and MPFR-256
+runs agree). Claims: the stored values' claim |value − exact| ≤ abs_error at every proved component and
 time, counted as proved (ball inside value ± abs_error) / consistent (overlapping) / contradicted
 (disjoint: the stored digits would be wrong). Wall seconds are of a shared 2-core machine.
 

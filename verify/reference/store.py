@@ -187,15 +187,21 @@ def refresh_index(directory: Path = DIRECTORY, names=None) -> None:
 
 def read_case(path: Path) -> dict:
     """A case file, checked for its format; ``ValueError`` naming the file otherwise."""
+    return read_json(path, FORMAT, "no reference case file {path}; run 'python -m verify reference --make'")
+
+
+def read_json(path: Path, format_: str, missing: str) -> dict:
+    """A JSON record of the reference set, checked for its ``format``; ``ValueError`` naming the file
+    otherwise (``missing``, with ``{path}`` filled in, when there is none)."""
     path = Path(path)
     try:
         record = json.loads(path.read_text())
     except FileNotFoundError:
-        raise ValueError(f"no reference case file {path}; run 'python -m verify reference --make'") from None
+        raise ValueError(missing.format(path=path)) from None
     except json.JSONDecodeError as err:
         raise ValueError(f"{path} is not valid JSON ({err})") from None
-    if record.get("format") != FORMAT:
-        raise ValueError(f"{path} has format {record.get('format')!r}; this reader understands {FORMAT!r}")
+    if record.get("format") != format_:
+        raise ValueError(f"{path} has format {record.get('format')!r}; this reader understands {format_!r}")
     return record
 
 

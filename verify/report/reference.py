@@ -71,29 +71,34 @@ def render_markdown(index: dict, checks: dict, proved=None) -> list:
 
 
 def _proved_lines(proved) -> list:
-    """The proved enclosures: per case, how far and how many digits, beside the agreed ones."""
+    """The proved enclosures: per case, the most digits proved at 1 s and at its end, beside the agreed ones."""
     if not proved:
         return []
     by_case = {}
     for row in proved:
-        by_case.setdefault(row["case"], {})[row["bits"]] = row
+        by_case.setdefault(row["case"], []).append(row)
 
-    def digits(row, key):
-        entry = row and row[key]
-        return "–" if not entry or entry["proved_digits_min"] is None else f"{entry['proved_digits_min']:.1f}"
+    def best(rows, key):
+        """(digits, bits) of the proof with the most digits at ``key`` ('at_1s' or 'at_last' of a complete one)."""
+        found = [(r[key]["proved_digits_fewest"], r["bits"]) for r in rows
+                 if r[key] and r[key]["proved_digits_fewest"] is not None and (key == "at_1s" or r["complete"])]
+        return max(found, default=None)
 
     lines = ["**Proved enclosures** (`python -m verify reference --prove`, reports/reference/proved/): balls that "
              "contain the exact solution of each case's equations from its exact start (verify/proof: a validated "
-             "Taylor integrator in Arb ball arithmetic), at 128 bits to each case's end and at 256 bits to 1 s. "
-             "Digits are proved significant digits, the fewest over the components; 'agreed' is the case file's. "
-             "'Contradicted' counts stored values whose claim |value - exact| <= abs_error the proof refutes.", "",
-             "| case | 128-bit proof reaches (s) | digits at 1 s: 256-bit / 128-bit / agreed | digits at the end of "
-             "the 128-bit proof / agreed | contradicted |", "|---|---|---|---|---:|"]
+             "Taylor integrator in Arb ball arithmetic), at 128 bits to each case's end, at 256 bits to 1 s, and at "
+             "192 bits to the end where 128 bits proved fewer than 30 digits there. Digits: proved significant digits "
+             "(bits of the proof) / agreed digits, the fewest over the components that are not agreed zeros. "
+             "'Contradicted' counts stored values whose claim |value - exact| <= abs_error a proof refutes.", "",
+             "| case | t_end (s) | digits at 1 s | digits at t_end | contradicted |", "|---|---:|---|---|---:|"]
     for case, rows in by_case.items():
-        low, high = rows.get(128), rows.get(256)
-        agreed_1 = (low or high)["at_1s"]["agreed_digits_min"] if (low or high)["at_1s"] else "–"
-        end = (f"{digits(low, 'at_last')} / {low['at_last']['agreed_digits_min']}" if low else "–")
-        lines.append(f"| {case} | {low['t_proved'] + ' of ' + low['t_end'] if low else '–'} | {digits(high, 'at_1s')} / "
-                     f"{digits(low, 'at_1s')} / {agreed_1} | {end} | "
-                     f"{sum(r['claims_contradicted'] for r in rows.values())} |")
+        cells = []
+        for key in ("at_1s", "at_last"):
+            found = best(rows, key)
+            agreed = next((r[key]["agreed_digits_fewest"] for r in rows if r[key]), None)
+            reached = max(rows, key=lambda r: float(r["t_proved"]))
+            cells.append(f"{found[0]:.1f} ({found[1]}) / {agreed}" if found else
+                         f"proved to {reached['t_proved']} s only")
+        lines.append(f"| {case} | {rows[0]['t_end']} | {cells[0]} | {cells[1]} | "
+                     f"{sum(r['claims_contradicted'] for r in rows)} |")
     return lines + [""]
