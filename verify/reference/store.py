@@ -249,7 +249,7 @@ value is the {index['precisions']['high'][3:]}-bit result rounded to the signifi
 `abs_error` is one unit in its last agreeing digit. These are *agreeing digits*, not proved ones: two
 runs of the same method can share an error, and `abs_error` is the agreement's estimate of a bound, not
 a proof. (Format 1 keeps its published key names, `precisions.certified` and the index's
-`min_certified_digits_final`: they hold agreeing digits. Proved enclosures are `verify/proof/`'s.)
+`min_certified_digits_final`: they hold agreeing digits. Proved enclosures are in `proved/`, written by `python -m verify reference --prove`.)
 
 | case | model | kind | source | t_end (s) | grid points | agreeing digits at t_end: min | median | exactly 0, agreed to | max row sum of the transition matrix at t_end |
 |---|---|---|---|---:|---:|---:|---:|---|---:|
