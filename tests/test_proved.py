@@ -87,6 +87,8 @@ def test_a_decimal_ball_contains_the_ball_it_writes(value, radius):
         assert (arb(mid) + arb(0, arb(rad).upper())).contains(b)
     finally:
         ctx.prec = saved
+    # the same ball written while the context is at python-flint's default 53 bits: no wider
+    assert decimal_ball(b, 256) == (mid, rad)
 
 
 def test_a_run_comes_within_its_bound_of_the_proof_and_a_perturbed_one_does_not():

@@ -10,16 +10,15 @@
   parallelepipeds with point matrices;
 * :mod:`.integrator` -- the steps (``method="lohner"`` or ``"direct"``), step-size control, exact
   output times;
-* :mod:`.case` -- a reference case read exactly (start, grid, parameters as rationals) and its
-  stored values checked against the proved balls.
+* :mod:`.case` -- a reference case read exactly (start, grid, parameters as rationals).
 
 What is proved: each ball contains the exact solution of the stated equations from the stated
 start at its time (the equations as derived and compiled for heyoka; that they are the paper's
 physics is the claims' business, not the proof's).  The proofs of the reference set are written
 by :mod:`verify.reference.proved`.
 """
-from .case import enclose_case, excess_over_stored
+from .case import enclose_case
 from .equations import VectorField
 from .integrator import Enclosure, enclose
 
-__all__ = ["Enclosure", "VectorField", "enclose", "enclose_case", "excess_over_stored"]
+__all__ = ["Enclosure", "VectorField", "enclose", "enclose_case"]

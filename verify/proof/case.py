@@ -1,4 +1,4 @@
-"""A reference case enclosed: its start and parameters read exactly, its grid, and the stored values checked.
+"""A reference case enclosed: its start and parameters read exactly, on its grid.
 
 The case file stores the start and the output times as decimal strings and the parameters as
 exact rationals; all are read as rationals (``fractions.Fraction``), so the enclosure is of
@@ -8,12 +8,10 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from flint import arb, ctx
-
 from models import get_model
 from models.symbols import STATE_NAMES
 
-from .equations import VectorField, exact
+from .equations import VectorField
 from .integrator import Enclosure, enclose
 
 
@@ -39,31 +37,3 @@ def case_problem(record: dict, *, start=None, params=None) -> tuple:
     state = dict(record["initial_state"])
     state.update(start or {})
     return VectorField(model, values), [state[n] for n in STATE_NAMES]
-
-
-def excess_over_stored(record: dict, enc: Enclosure, j: int = -1) -> dict:
-    """Per state component at ``enc.t[j]``: how far the stored value lies outside the proved ball
-    widened by the stored ``abs_error`` (<= 0: consistent; > 0: the stored value and the proof disagree).
-
-    Computed in Arb at the enclosure's precision (an upper bound of the gap's lower end).
-    """
-    index = record["grid"].index(_grid_text(record, enc.t[j]))
-    saved = ctx.prec
-    ctx.prec = enc.prec
-    try:
-        out = {}
-        for n, row in zip(STATE_NAMES, enc.y):
-            stored = arb(exact(record["state"][n]["value"][index]))
-            allowed = arb(exact(record["state"][n]["abs_error"][index]))
-            gap = abs(stored - row[j].mid()) - row[j].rad() - allowed
-            out[n] = float(gap.lower())
-        return out
-    finally:
-        ctx.prec = saved
-
-
-def _grid_text(record: dict, t: Fraction) -> str:
-    for s in record["grid"]:
-        if Fraction(s) == t:
-            return s
-    raise ValueError(f"time {t} is not on the case's grid")

@@ -65,12 +65,13 @@ class Enclosure:
     radius: list = dc_field(default_factory=list)
 
     def proved_digits(self, j: int = -1) -> float:
-        """The fewest significant digits the balls at ``t[j]`` prove, over the nonzero components."""
+        """The fewest significant digits (log10 |mid|/rad) the balls at ``t[j]`` prove, over the components
+        whose ball excludes 0 (a ball holding 0 proves only its radius, no significant digit)."""
         out = math.inf
         for row in self.y:
             b = row[j]
             mid, rad = abs(float(b.mid())), float(b.rad())
-            if mid == 0:
+            if b.contains(0):
                 continue
             out = min(out, math.inf if rad == 0 else math.log10(mid / rad))
         return out

@@ -183,6 +183,19 @@ def _append(proof: dict, time_text: str, balls: list, prec: int) -> None:
     proof["proved_digits_min"].append(min(known) if known else None)
 
 
+def balls_record(record: dict, enclosure) -> dict:
+    """An enclosure (:class:`verify.proof.Enclosure`) of ``record``'s case written as a proof's times and
+    decimal balls, the form :func:`claims` reads: the one way stored values are set against balls."""
+    texts = {Fraction(t): t for t in record["grid"]}
+    out = {"times": [texts[t] for t in enclosure.t], "state": {n: {"mid": [], "rad": []} for n in STATE_NAMES}}
+    for n, row in zip(STATE_NAMES, enclosure.y):
+        for b in row:
+            mid, rad = decimal_ball(b, enclosure.prec)
+            out["state"][n]["mid"].append(mid)
+            out["state"][n]["rad"].append(rad)
+    return out
+
+
 def _append_exact(proof: dict, time_text: str, start: list) -> None:
     """The start, exactly as the case states it (decimal strings, radius 0)."""
     proof["times"].append(time_text)
@@ -201,7 +214,8 @@ def decimal_ball(b: arb, prec: int) -> tuple:
     distance to the farther end rounded up to two significant digits, and the containment is
     checked exactly before the strings are returned.
     """
-    lower, upper = exact_fraction(b.lower()), exact_fraction(b.upper())
+    centre_b, radius_b = exact_fraction(b.mid()), exact_fraction(b.rad())  # exact, whatever ctx.prec is
+    lower, upper = centre_b - radius_b, centre_b + radius_b
     digits = max(10, min(int(prec * 0.30103) + 3, _digits_needed(b) + 6))
     mid = "0" if b.mid() == 0 else b.mid().str(digits, radius=False)
     centre = Fraction(Decimal(mid))
@@ -212,7 +226,7 @@ def decimal_ball(b: arb, prec: int) -> tuple:
 
 
 def exact_fraction(point: arb) -> Fraction:
-    """The exact value of an arb of radius 0 (an end from ``lower()``/``upper()``)."""
+    """The exact value of an arb of radius 0 (a ball's ``mid()`` or ``rad()``)."""
     man, exp = point.mid().man_exp()
     man, exp = int(man), int(exp)
     return Fraction(man * 2 ** exp) if exp >= 0 else Fraction(man, 2 ** -exp)
