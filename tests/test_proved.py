@@ -19,6 +19,7 @@ from flint import arb, ctx
 
 from verify.reference import DIRECTORY, check_case, load_set
 from verify.reference.proved import (
+    ball,
     claims,
     decimal_ball,
     load_proofs,
@@ -115,16 +116,22 @@ def test_an_mpfr_run_lands_within_its_bound_of_the_proofs_and_a_perturbed_one_do
     assert wrong.proof_ratio > 1, wrong
 
 
+def _copy_set(source: Path, target: Path) -> None:
+    target.mkdir(parents=True, exist_ok=True)
+    for name in ("index.json", "disk-standard-1.json"):
+        shutil.copy(source / name, target / name)
+
+
 @pytest.fixture()
 def small_set(tmp_path):
     """A copy of the reference set's index and disk-standard-1 in a temporary folder."""
-    for name in ("index.json", "disk-standard-1.json"):
-        shutil.copy(DIRECTORY / name, tmp_path / name)
+    _copy_set(DIRECTORY, tmp_path)
     return tmp_path
 
 
 def test_the_writer_resumes_and_stops_on_its_budget(small_set):
-    """A proof to 1/32 s, resumed to 1/16 s, equals in its times a run straight to 1/16 s; a zero budget
+    """A proof to 1/32 s, resumed to 1/16 s, has the times of a run straight to 1/16 s and balls that meet
+    it (both hold the exact solution); a budget already spent
     stops after the first grid time with the reason written; every written ball holds the stored value."""
     record = read_case(small_set / "disk-standard-1.json")
     settings = settings_of(128)
@@ -132,7 +139,11 @@ def test_the_writer_resumes_and_stops_on_its_budget(small_set):
     assert first["times"] == ["0", "0.03125"] and not first["complete"]
     resumed = prove_case(record, directory=small_set, until="0.0625", settings=settings)
     assert resumed["times"] == ["0", "0.03125", "0.0625"] and resumed["resumed_at"] == ["0.03125"]
-    stopped = prove_case(record, directory=small_set, until="0.125", settings=settings, budget=0)
+    _copy_set(DIRECTORY, small_set / "straight")
+    straight = prove_case(record, directory=small_set / "straight", until="0.0625", settings=settings)
+    for n in ("theta", "psidot", "x"):  # the resumed balls and the straight run's hold the same solution
+        assert ball(resumed, n, -1).overlaps(ball(straight, n, -1)), n
+    stopped = prove_case(record, directory=small_set, until="0.125", settings=settings, budget=-1)
     assert stopped["times"][-1] == "0.09375" and "budget" in stopped["stopped"]
     assert read_proof(proof_path(small_set, "disk-standard-1", 128)) == stopped
     assert claims(record, stopped)["contradicted"] == 0

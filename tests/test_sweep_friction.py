@@ -129,8 +129,12 @@ def disagreements(rows, t_end) -> list:
             t_single = float(sol.t_events["slips"])
             m_single = _mismatch_in_eps(r["in_phidot"], t_single, mu)
             m_lane = _mismatch_in_eps(r["in_phidot"], r["t_slip"], mu)
+            # the single engine's own mismatch sets the yardstick, so it is capped: measured 28-490 eps
+            if not m_single <= 1e3:
+                out.append((r["idx"], "single engine's slip mismatch in eps above its cap 1e3", m_single))
             if not m_lane <= 8 * m_single + 8 * (1 + 2 * steps):
-                out.append((r["idx"], "t_slip", r["t_slip"], t_single, m_lane, m_single))
+                out.append((r["idx"], "t_slip", r["t_slip"], t_single, f"lane mismatch {m_lane:.3g} eps",
+                            f"single mismatch {m_single:.3g} eps"))
             thetadot = abs(float(sol["thetadot"][-1]))
             allowed = thetadot * abs(r["t_slip"] - t_single) + 8 * (1 + 2 * steps) * EPS * abs(r["theta_at_slip"])
             if not abs(r["theta_at_slip"] - float(sol["theta"][-1])) <= allowed:
