@@ -215,3 +215,32 @@ def test_export_writes_every_case_and_each_form_b_file_scores_as_the_reference(t
         s = score(tmp_path / f"{n}.matrix.csv", n)
         assert s.min_digits > 15 and s.contact_height < 1e-15 and s.contact_velocity < 1e-12, n
     assert main(["reference", "--export", str(tmp_path / "README.md"), "--format", "json"]) == 2
+
+
+@pytest.mark.parametrize("target", ["reference-set", "other-files", "empty-name"])
+def test_export_refuses_to_overwrite_what_it_does_not_own(tmp_path, target):
+    """--export over a reference set (its case files share the export's names), over a folder of other
+    files, or to an empty name: one line naming the folder and what is allowed, exit 2, nothing written."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    if target == "reference-set":
+        folder = tmp_path / "set"
+        shutil.copytree(DIRECTORY, folder, ignore=shutil.ignore_patterns("proved"))
+    elif target == "other-files":
+        folder = tmp_path / "mine"
+        folder.mkdir()
+        (folder / "notes.txt").write_text("mine\n")
+    else:
+        folder = ""
+    before = {p.name: p.read_bytes() for p in Path(folder or tmp_path).iterdir() if p.is_file()} if folder else {}
+    out = subprocess.run([sys.executable, "-m", "verify", "reference", "--export", str(folder), "--format", "json"],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert out.returncode == 2, out.stderr
+    assert "allowed" in out.stderr and "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
+    if folder:
+        assert {p.name: p.read_bytes() for p in Path(folder).iterdir() if p.is_file()} == before
+    else:
+        assert list(tmp_path.iterdir()) == []

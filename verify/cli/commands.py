@@ -202,6 +202,8 @@ def cmd_reference(args, session: Session) -> int:
         raise UsageError("--format csv is for --export; --check prints text or json")
     try:
         if args.export is not None:
+            if not args.export.strip():
+                raise UsageError("--export '': allowed a folder name (a new or empty folder, or an earlier export)")
             if args.format not in ("csv", "json"):
                 raise UsageError(f"--export needs --format csv or json (got {args.format or 'none'})")
             if args.precision is not None or args.case:

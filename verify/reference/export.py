@@ -25,7 +25,7 @@ import mpmath
 
 from models.symbols import STATE_NAMES
 
-from ..provenance import write_atomic
+from ..provenance import writable_folder, write_atomic
 from ..frames import CONTACT, MOTION, MATRIX_ENTRIES, QUATERNION, euler_to_b
 from .store import CONVENTIONS, DIRECTORY, load_set
 
@@ -87,7 +87,9 @@ def export_set(directory: Path, fmt: str, source: Path = DIRECTORY) -> list:
         raise ValueError(f"--format {fmt!r}; allowed: {', '.join(EXPORT_FORMATS)}")
     directory = Path(directory)
     if directory.exists() and not directory.is_dir():
-        raise ValueError(f"{directory} exists and is not a folder")
+        raise ValueError(f"--export {str(directory)!r} exists and is not a folder")
+    _refuse_overwriting(directory, Path(source))
+    writable_folder(directory)
     files = {}
     setups = []
     for record in load_set(source):
@@ -102,7 +104,7 @@ def export_set(directory: Path, fmt: str, source: Path = DIRECTORY) -> list:
             files[f"{record['name']}.json"] = json.dumps(
                 {"format": "rolling-verify reference case, export 1", **setup, "conventions": CONVENTIONS,
                  "forms": _forms_text(), "euler": euler, "matrix": matrix or None}, indent=1) + "\n"
-    files["README.md"] = readme(setups, fmt)
+    files["README.md"] = readme(setups, fmt, source)
     for name, text in files.items():
         write_atomic(directory / name, text)
     return [directory / n for n in files]
@@ -116,7 +118,7 @@ def _forms_text() -> dict:
                       "(wx, wy, wz) the angular velocity in inertial components; Z up, the plane at z = 0"}
 
 
-def readme(setups: list, fmt: str) -> str:
+def readme(setups: list, fmt: str, source: Path = DIRECTORY) -> str:
     def files(name, has_b):
         if fmt == "json":
             return f"`{name}.json`"
@@ -132,7 +134,7 @@ def readme(setups: list, fmt: str) -> str:
     conventions = "\n".join(f"* **{k}**: {v}" for k, v in CONVENTIONS.items())
     return f"""# The reference cases, exported
 
-Written by `python -m verify reference --export DIR --format {fmt}` from `reports/reference/` (see its
+Written by `python -m verify reference --export DIR --format {fmt}` from `{_shown_source(source)}` (see its
 README for how far the values are agreed). Score your own run of a case with
 `python -m verify score RUN --case NAME` (RUN a CSV or JSON file in either form below).
 
@@ -161,3 +163,25 @@ psidot = w . e3 - phidot cos theta (phi, psi modulo 2 pi).
 ## Cases
 
 {chr(10).join(blocks)}"""
+
+
+def _refuse_overwriting(directory: Path, source: Path) -> None:
+    """The export goes to a new or empty folder, or over an earlier export; never over the set it reads
+    (its case files share names with the export's JSON files) or over any other folder's files."""
+    if directory.resolve() == source.resolve() or (directory / "index.json").exists():
+        raise ValueError(f"--export {str(directory)!r} holds a reference set (index.json): the export would "
+                         "overwrite its case files; allowed: a new or empty folder, or an earlier export")
+    if directory.is_dir():
+        present = [p for p in directory.iterdir() if not p.name.startswith(".")]
+        earlier = (directory / "README.md").exists() and "export" in (directory / "README.md").read_text()[:400]
+        if present and not earlier:
+            raise ValueError(f"--export {str(directory)!r} is a folder with other files in it; allowed: a new or "
+                             "empty folder, or an earlier export")
+
+
+def _shown_source(source: Path) -> str:
+    """The set's folder as the README names it: relative to the project where it lies inside it."""
+    try:
+        return str(Path(source).resolve().relative_to(DIRECTORY.resolve().parents[1])) + "/"
+    except ValueError:
+        return str(source) + "/"
