@@ -437,8 +437,10 @@ def test_the_ring_slides_sticks_and_rolls_with_its_energy_balanced():
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--friction", "abc"], "friction='abc'"),
-    (["--friction", "nan"], "friction='nan'"),
+    (["--friction", "abc"], "--friction: 'abc' is not a number"),
+    (["--friction", "nan"], "--friction: 'nan' is not a finite number"),
+    (["--friction", "-0.1"], "--friction '-0.1': allowed a Coulomb coefficient >= 0"),
+    (["--friction", "1", "--velocity", "1,abc"], "--velocity VX,VY: 'abc' is not a number"),
     (["--friction", "1", "--t-end", "abc"], "--t-end abc"),
 ])
 def test_bad_input_names_the_value_and_exits_2(capsys, argv, words):
@@ -450,3 +452,19 @@ def test_bad_input_names_the_value_and_exits_2(capsys, argv, words):
     code = main(args)
     out, err = capsys.readouterr()
     assert code == 2 and out == "" and words in err and "Traceback" not in err
+
+
+def test_a_sliding_start_outside_the_domain_is_bad_input_and_a_reached_one_is_a_failed_run(capsys):
+    """A start lying flat (theta = 0) with a skid is refused before any phase (exit 2, the domain named);
+    a skid that carries the disk through flat (theta = 1, velocity (1, 2)) reaches theta < 0 while sliding:
+    the run fails (exit 1, naming the phase), it is not the user's input that was wrong."""
+    from verify.cli import main
+
+    code = main(["trajectory", "disk+coulomb", "--state", "theta=0", "--friction", "0.5", "--velocity", "1,2",
+                 "--t-end", "0.2"])
+    out, err = capsys.readouterr()
+    assert code == 2 and out == "" and "outside the domain" in err and "Traceback" not in err
+    code = main(["trajectory", "disk+coulomb", "--state", "theta=1", "--friction", "0.5", "--velocity", "1,2",
+                 "--t-end", "0.2"])
+    out, err = capsys.readouterr()
+    assert code == 1 and "rolling phase" in err and "cannot start" in err and "Traceback" not in err

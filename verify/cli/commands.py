@@ -30,6 +30,9 @@ def cmd_trajectory(args, session: Session) -> int:
     tol = None if args.tol is None else _positive(args.tol, "--tol", "1e-15 (the Taylor tolerance; default: the precision's epsilon)")
     n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)  # at least the start and t_end
     friction = None if args.friction is None else _positive(args.friction, "--friction", "0.5 (a friction coefficient)")
+    if getattr(args, "velocity", None) is not None:
+        raise UsageError(f"--velocity is for the rolling-and-sliding bodies ({', '.join(COULOMB_NAMES)}); "
+                         f"{args.model!r} rolls without slipping, its centre's velocity follows from the state")
     model = get_model(args.model, args.equations)
     show = args.progress if args.progress is not None else args.format == "text"
     bar = _Progress(sys.stderr, f"trajectory {args.model}", t_end, show)
@@ -68,13 +71,17 @@ def _coulomb_trajectory(args, session: Session, precision) -> int:
     state, params = _numeric_pairs(args.state, "state"), _numeric_pairs(args.param, "param")
     t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
     n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)
+    friction = _decimal(args.friction, "--friction")
+    if friction.startswith("-") and any(c in "123456789" for c in friction):
+        raise UsageError(f"--friction {friction!r}: allowed a Coulomb coefficient >= 0 such as 0.5")
     velocity = None
     if args.velocity is not None:
         velocity = args.velocity.split(",")
         if len(velocity) != 2:
             raise UsageError(f"--velocity {_shown(args.velocity)}; allowed: two numbers VX,VY")
+        velocity = [_decimal(v, "--velocity VX,VY") for v in velocity]
     try:
-        sol = hybrid.solve(args.model, t_end, state, params, friction=args.friction, velocity=velocity,
+        sol = hybrid.solve(args.model, t_end, state, params, friction=friction, velocity=velocity,
                            precision=precision, n_eval=n_eval)
         failed = None
     except ValueError as err:

@@ -60,7 +60,8 @@ from .compile import friction_function, symbol_map, to_heyoka
 from .problem import max_step
 from .single import solve as solve_rolling
 from .trajectory import IntegrationError
-from .validation import InvalidStart, parameters as resolve_parameters, positive_number, state as resolve_state
+from .validation import InvalidStart, first_problem, parameters as resolve_parameters, positive_number
+from .validation import state as resolve_state
 from ..precision import Precision, parse_precision
 
 #: Sliding-phase state (models.coulomb): the eight, the slip speed and direction, the work.
@@ -265,6 +266,9 @@ def solve(
         raise ValueError(f"friction={friction!r} must be >= 0 (the Coulomb coefficient)")
     pars = resolve_parameters(rolling, params, prec)
     y0 = resolve_state(rolling, state, prec)
+    problem = first_problem(rolling, y0[:, None], None, [dict(state)] if isinstance(state, dict) else None)
+    if problem is not None:  # the body's domain and constraints, as solve checks them (N waits for the phase)
+        raise InvalidStart(problem[2], problem[1])
     c = compiled(name, prec)
     par_vector = prec.array([pars[p.name] for p in rolling.parameters] + [mu])
     n = int(n_eval) - 1
@@ -389,10 +393,10 @@ class _Run:
         else:
             label = "failed:non_finite" if outcome == hy.taylor_outcome.err_nf_state else "failed:sliding"
             raise IntegrationError(f"sliding phase of {self.name} stopped at t = {ta.time}: heyoka outcome {outcome}"
-                                   + (f" ({'; '.join(messages)})" if messages else ""), label, ta.time,
+                                   + (f" ({'; '.join(m.text for m in messages)})" if messages else ""), label, ta.time,
                                    list(ta.state), self.result())
         if messages:
-            raise IntegrationError(f"sliding phase of {self.name}: heyoka warned: {'; '.join(messages)}",
+            raise IntegrationError(f"sliding phase of {self.name}: heyoka warned: {'; '.join(m.text for m in messages)}",
                                    "failed:event_detection", ta.time, list(ta.state), None)
         values = _evaluate(c.sliding_function, prec.array(np.concatenate(states)).reshape(len(states), -1).T,
                            self.par_vector)
@@ -503,7 +507,9 @@ class _Run:
             if err.reason == "slips":
                 self.phases.pop()
                 return self.onset(t0, y8, f"rolling from t = {t0} needs more friction than mu: {err}")
-            raise
+            # a state the run reached, not one the user gave: a failed run, not bad input
+            raise IntegrationError(f"rolling phase of {self.name} from t = {t0} cannot start: {err}",
+                                   "failed", t0, list(y8), None) from None
         self.rolling_runs.append(sol)
         states = [np.array(sol.y[:, j]) for j in range(sol.y.shape[1])]
         times = [t0 + tau for tau in sol.t]
