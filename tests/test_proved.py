@@ -154,6 +154,9 @@ def test_the_writer_resumes_and_stops_on_its_budget(small_set):
     (["--until", "abc"], "not a number"),
     (["--until", "-1"], "positive"),
     (["--budget", "-5"], "--budget"),
+    (["--until", "1e-9", "--case", "disk-standard-1"], "first grid time"),
+    (["--format", "json"], "--format is for --check and --export"),
+    (["--jobs", "4"], "--jobs is for --make"),
 ])
 def test_bad_prove_arguments_are_refused(small_set, args, says):
     """One line naming the value and what is allowed, exit 2, nothing written."""

@@ -207,6 +207,11 @@ def cmd_reference(args, session: Session) -> int:
     say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
     if args.export is None and args.format == "csv":
         raise UsageError("--format csv is for --export; --check prints text or json")
+    mode = "--export" if args.export is not None else "--prove" if args.prove else "--make" if args.make else "--check"
+    for option, value, modes in (("--until", args.until, ("--prove",)), ("--budget", args.budget, ("--prove",)),
+                                 ("--jobs", args.jobs, ("--make",)), ("--format", args.format, ("--check", "--export"))):
+        if value is not None and mode not in modes:
+            raise UsageError(f"{option} is for {' and '.join(modes)}, not {mode}")
     try:
         if args.export is not None:
             if not args.export.strip():
@@ -227,7 +232,7 @@ def cmd_reference(args, session: Session) -> int:
         if args.make:
             if args.precision is not None:
                 raise UsageError("--precision is for --check; --make always runs mp:128 and mp:256")
-            jobs = _positive_int(args.jobs, "--jobs")
+            jobs = _positive_int(args.jobs or "2", "--jobs")
             t0 = time.monotonic()
             session.interrupt_note = f"cases already written to {directory} are kept"
             records = reference.make_set(args.case, jobs=jobs, directory=directory, progress=say)

@@ -89,6 +89,9 @@ def prove_case(record: dict, *, directory: Path = DIRECTORY, budget: float = mat
     path = proof_path(directory, name, settings["prec"])
     stop = Fraction(record["t_end"] if until is None else str(until))
     grid = [s for s in record["grid"] if Fraction(s) <= stop]
+    if len(grid) < 2:
+        raise ValueError(f"--until {float(stop):g}: before {name}'s first grid time after 0 ({record['grid'][1]} s); allowed: "
+                         "a time at or after it")
     from .make import equations_fingerprint
 
     if record["model"]["equations_sha256"] != equations_fingerprint(record["model"]["name"]):
@@ -262,13 +265,7 @@ def _leading_zeros(x: Fraction) -> int:
 
 
 def _balls_at(proof: dict, j: int, prec: int) -> list:
-    saved = ctx.prec
-    ctx.prec = prec
-    try:
-        return [arb(proof["state"][n]["mid"][j]) + arb(0, arb(proof["state"][n]["rad"][j]).upper())
-                for n in STATE_NAMES]
-    finally:
-        ctx.prec = saved
+    return [ball(proof, n, j, prec) for n in STATE_NAMES]
 
 
 def ball(proof: dict, component: str, j: int, prec: int = 320) -> arb:

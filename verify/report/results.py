@@ -70,12 +70,12 @@ def assemble(outcomes: dict) -> dict:
 
 def _proved_summary():
     """The proved enclosures' index (reports/reference/proved/index.json), or None where none were made."""
-    import json
-
-    from ..reference.proved import proved_directory
+    from ..reference.proved import INDEX_FORMAT, proved_directory
+    from ..reference.store import read_json
 
     path = proved_directory() / "index.json"
     if not path.exists():
         return None
     # the wall times stay in the proofs' own index: results.json carries none (same command, same bytes)
-    return [{k: v for k, v in row.items() if k != "wall_seconds"} for row in json.loads(path.read_text())["proofs"]]
+    proofs = read_json(path, INDEX_FORMAT, "no proofs' index {path}")["proofs"]
+    return [{k: v for k, v in row.items() if k != "wall_seconds"} for row in proofs]
