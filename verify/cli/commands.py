@@ -285,6 +285,9 @@ def cmd_score(args, session: Session) -> int:
     from ..scoring import START_TOLERANCE, score
 
     tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-6"))
+    if not tol < 1:  # a tolerance of a whole scale or more (or one that overflows to inf) checks no start at all
+        raise UsageError(f"--start-tol {args.start_tol}: allowed a fraction of each component's scale below 1, "
+                         "such as 1e-6")
     try:
         result = score(args.run_file, args.case, directory=Path(args.dir) if args.dir else DIRECTORY, start_tolerance=tol)
     except ValueError as err:  # InvalidRun and an unknown case: bad input

@@ -168,9 +168,9 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
     form, columns = read_run(run)
     t = columns["t"]
     if t[0] != 0:
-        raise InvalidRun(f"the run starts at t = {t[0]!r}; case {case} starts at t = 0")
+        raise InvalidRun(f"the run starts at t = {float(t[0])!r}; case {case} starts at t = 0")
     if t[-1] > float(record["t_end"]):
-        raise InvalidRun(f"the run goes to t = {t[-1]!r}, beyond case {case}'s t_end = {record['t_end']}")
+        raise InvalidRun(f"the run goes to t = {float(t[-1])!r}, beyond case {case}'s t_end = {record['t_end']}")
     params = {k: float(v["decimal"]) for k, v in record["model"]["parameters"].items()}
     R = w = None
     if form == "euler":
@@ -202,7 +202,7 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
         start = float(record["initial_state"][n])
         err = abs(_difference(n, state[n][0], start)) / scales[n][0]
         if not err <= start_tolerance:
-            raise InvalidRun(f"the start does not match case {case}: {n}(0) = {state[n][0]!r}, the case's {start!r} "
+            raise InvalidRun(f"the start does not match case {case}: {n}(0) = {float(state[n][0])!r}, the case's {start!r} "
                              f"(off by {err:.1e} of its scale {scales[n][0]:.4g}, more than {start_tolerance:g})")
     digits, components = {}, {}
     for n in STATE_NAMES:

@@ -29,7 +29,7 @@ def read_run(run) -> tuple:
         path = Path(run)
         try:
             text = path.read_text()
-        except (FileNotFoundError, IsADirectoryError, UnicodeDecodeError) as err:
+        except (OSError, UnicodeDecodeError) as err:  # missing, a folder, unreadable, not text
             raise InvalidRun(f"cannot read the run {path}: {err}") from None
         columns = _json(text, path) if path.suffix.lower() == ".json" else _csv(text, path)
     else:
@@ -40,10 +40,13 @@ def read_run(run) -> tuple:
         raise InvalidRun(str(err)) from None
     out, length = {}, None
     for name, values in columns.items():
-        try:
-            arr = np.array([float(v) for v in np.ravel(values)], dtype=float)
-        except (TypeError, ValueError):
-            raise InvalidRun(f"column {name!r} holds a value that is not a number") from None
+        arr = np.empty(len(np.ravel(values)))
+        for row, v in enumerate(np.ravel(values)):
+            try:
+                arr[row] = float(v)
+            except (TypeError, ValueError):
+                raise InvalidRun(f"column {name!r} at row {row} holds {str(v)[:40]!r}, not a number; allowed: "
+                                 "decimal numbers") from None
         if not np.all(np.isfinite(arr)):
             bad = int(np.flatnonzero(~np.isfinite(arr))[0])
             raise InvalidRun(f"column {name!r} is not finite at row {bad} ({arr[bad]})")
