@@ -96,6 +96,7 @@ class SlidingPhase:
     slip_rate_along: sp.Expr
     slip_rate_across: sp.Expr
     cm_velocity_xy: tuple
+    painleve_margin: sp.Expr
 
 
 @lru_cache(maxsize=None)
@@ -115,8 +116,9 @@ def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> Slidin
     e_slip = sp.Matrix([cb, sb * sp.cos(theta), -sb * sp.sin(theta)])
     normal = g + zddot  # N / M
     force = normal * Z - mu * normal * e_slip  # F / M
-    _, acc = newton_euler(inertia, w, wdot, Om, r, force)
+    rows, acc = newton_euler(inertia, w, wdot, Om, r, force)
     on_shell = dict(zip(ACCELERATIONS, acc))
+    margin = painleve_margin(rows)
 
     # omega x r_P: its vertical part is -z_C' (the contact stays on the plane), its horizontal part
     # in (e1, h) is (c1, c2); the CM's horizontal velocity is u - (c1, c2).
@@ -143,7 +145,55 @@ def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> Slidin
         along, across / slip_speed, mu * g * normal_on_shell * slip_speed,
     )
     kinetic = sp.Rational(1, 2) * (w.dot(inertia * w) + v1 ** 2 + v2 ** 2 + zdot ** 2)
-    return SlidingPhase(rhs, kinetic + g * height, kinetic, normal_on_shell, along, across, (xdot, ydot))
+    return SlidingPhase(rhs, kinetic + g * height, kinetic, normal_on_shell, along, across, (xdot, ydot), margin)
+
+
+def painleve_margin(rows) -> sp.Expr:
+    """P = det(d rows / d accelerations) over its value at mu = 0: Painleve's margin of the sliding phase.
+
+    N = g + z_C'' carries thetaddot, and the friction -mu N e(alpha) feeds it back into the rows, so the
+    accelerations solve a linear system whose determinant is that of the frictionless body (positive)
+    times P.  For a body of revolution with z_C = H(theta) only row 1 holds thetaddot, and
+
+        P = 1 + mu sin(alpha - phi) H H' / (I1 + H'^2)          (disk: H = sin theta)
+
+    P = 1 at mu = 0; where P reaches 0 the accelerations and N grow without bound, and for P < 0 the
+    sliding equations no longer have a unique solution (Painleve's paradox: the rigid body with Coulomb
+    friction jams).  It can reach 0 only if mu > min over theta of (I1 + H'^2) / |H H'|
+    (:func:`critical_friction`; the thin disk's 2 sqrt(k (k + 1)))."""
+    jacobian = rows.jacobian(list(ACCELERATIONS))
+    det = sp.expand(jacobian.det())
+    return _simplify(det / det.subs(mu, 0))
+
+
+def critical_friction(name: str, params: dict | None = None, samples: int = 4096) -> float:
+    """The smallest mu at which Painleve's margin can reach 0 somewhere in the body's domain (any alpha).
+
+    min over theta of (I1 + H'^2) / |H H'|, read off :func:`painleve_margin` as 1 / max |dP/dmu| over a
+    grid of ``samples`` angles in the domain and refined by golden-section search (mpmath, 30 digits);
+    infinite for a body whose margin does not depend on mu.  Below it a sliding phase cannot jam."""
+    import mpmath
+
+    rolling, sliding, parameters = body(name)
+    values = {p.symbol: sp.sympify((params or {}).get(p.name, p.default)) for p in parameters if p.name != "mu"}
+    slope = sp.diff(sliding.painleve_margin, mu).subs(values)  # mu sin(alpha - phi) H H' / (I1 + H'^2) / mu
+    slope = sp.simplify(slope.subs(slip_direction, phi + sp.pi / 2))  # |sin(alpha - phi)| = 1
+    f = sp.lambdify(theta, sp.Abs(slope), "mpmath")
+    lo, hi = (sp.sympify(e).subs(values) for e in (rolling.domain.theta_min, rolling.domain.theta_max))
+    with mpmath.workdps(30):
+        lo, hi = mpmath.mpf(sp.N(lo, 40)), mpmath.mpf(sp.N(hi, 40))
+        grid = [lo + (hi - lo) * (i + mpmath.mpf(1) / 2) / samples for i in range(samples)]
+        best = max(range(samples), key=lambda i: f(grid[i]))
+        a, b = grid[max(best - 1, 0)], grid[min(best + 1, samples - 1)]
+        ratio = (mpmath.sqrt(5) - 1) / 2
+        for _ in range(120):
+            c, d = b - ratio * (b - a), a + ratio * (b - a)
+            if f(c) > f(d):
+                b = d
+            else:
+                a = c
+        peak = f((a + b) / 2)
+    return float("inf") if peak == 0 else float(1 / peak)
 
 
 def body(name: str):

@@ -5,6 +5,8 @@ pass vacuously has a negative control that must fail it.
 """
 from __future__ import annotations
 
+import json
+
 import mpmath
 import numpy as np
 import pytest
@@ -12,7 +14,8 @@ import sympy as sp
 
 from models import get_model
 from models.symbols import STATE
-from verify.engine import hybrid, slip_onset
+from verify.engine import hybrid, hybrid_guards, slip_onset
+from verify.engine.trajectory import IntegrationError
 from verify.studies.coulomb_examples import perturbed_circle, steady_circle
 from verify.engine.single import solve
 from verify.precision import parse_precision
@@ -147,11 +150,11 @@ def test_a_wrong_stick_map_fails_the_energy_balance(monkeypatch):
         return right(self, t, self.prec.array(list(self.y[before])))
 
     monkeypatch.setattr(hybrid._Run, "_after_stick", early)
-    try:
-        sol = _tilted("double")
-    except hybrid.UnsupportedTransition as err:  # the wrong state may also need more friction than mu
-        sol = err.trajectory
-    assert sol.energy_plus_work_drift_in_eps > 1e6
+    with pytest.raises(IntegrationError) as err:  # the run's own guard stops it: never handed out
+        _tilted("double")
+    assert err.value.outcome == "failed:energy_balance", err.value
+    assert err.value.trajectory.outcome == "failed:energy_balance" and err.value.trajectory.status == 1
+    assert err.value.trajectory.energy_plus_work_drift_in_eps > 1e6  # measured: 2.9e12
 
 
 # --- 1. mu = 0 is the smooth plane (sliding-disk) ------------------------------------------------
@@ -294,9 +297,23 @@ def test_a_slip_from_rest_of_the_contact_is_the_limit_of_launches_with_a_vanishi
     assert ratios[1] < 1.0  # a slip of delta moves the end by about delta / 100, not more
 
 
+def _lift_guards(monkeypatch):
+    """The run's switch and balance guards off (verify.engine.hybrid_guards), to measure what they stop."""
+    monkeypatch.setattr(hybrid_guards, "check_switch", lambda *args: None)
+    monkeypatch.setattr(hybrid_guards, "check_balance", lambda *args: None)
+    monkeypatch.setattr(hybrid._Run, "_check_sliding_start", lambda *args: None)
+
+
 def test_negative_control_an_onset_in_the_wrong_direction_is_not_that_limit(monkeypatch):
+    """An onset turned by 0.5 rad from the right direction: its Taylor start is off its own path, which the
+    onset's switch guard sees (E + W at the start against the onset: measured 1.2e-3 against a bound of
+    8.6e-10), and, with that guard lifted, the run is far from the limit of launches (measured: 7.9e7 delta)."""
     right = hybrid.onset_directions
     monkeypatch.setattr(hybrid, "onset_directions", lambda c, y, p: [(a + 0.5, lam) for a, lam in right(c, y, p)])
+    with pytest.raises(IntegrationError) as err:
+        _below_circle()
+    assert err.value.outcome == "failed:switch_constraint" and "onset of slip" in str(err.value)
+    _lift_guards(monkeypatch)
     wrong = _below_circle()
     monkeypatch.setattr(hybrid, "onset_directions", right)
     gap = _final_gap(_nearby_launch("1e-7", 0.5), wrong)
@@ -398,7 +415,9 @@ def test_the_onset_series_summed_at_half_its_time_gives_the_same_motion(monkeypa
 def test_negative_control_a_wrong_onset_series_fails_the_checks(wrong, monkeypatch):
     """alpha1 (the direction's first rate) or sigma = 2 s_2 (the slip's second derivative) off by one part
     in 10^6: the start at t1 leaves the slow solution.  It must fail the t1 / 2 route by far (measured: gaps
-    of 1.4e7 and 1.8e7 eps) and E + W (measured: 1.5e5 and 912 eps)."""
+    of 1.4e7 and 1.8e7 eps) and E + W (measured: 1.5e5 and 912 eps).  The run's guards stop such a run
+    (sigma: E + W at t1 against the onset, 2.0e-6 against a bound of 7.9e-10; alpha1: E + W 1.5e5 eps past
+    its bound of 1.2e3); the gaps are measured with them lifted."""
     right_run, _ = _perturbed_circle()
     extend = slip_onset.OnsetSeries.extend
 
@@ -410,6 +429,10 @@ def test_negative_control_a_wrong_onset_series_fails_the_checks(wrong, monkeypat
             self.s[2] *= 1 + 1e-6
 
     monkeypatch.setattr(slip_onset.OnsetSeries, "extend", off)
+    with pytest.raises(IntegrationError) as err:
+        _perturbed_circle()
+    assert err.value.outcome in ("failed:switch_constraint", "failed:energy_balance"), err.value
+    _lift_guards(monkeypatch)
     sol, _ = _perturbed_circle()
     assert _final_gap(sol, right_run) > 1e3 * (4 * _conditioning() + 16 * 2.0 ** -52)
     assert sol.energy_plus_work_drift_in_eps > 64
@@ -454,17 +477,31 @@ def test_bad_input_names_the_value_and_exits_2(capsys, argv, words):
     assert code == 2 and out == "" and words in err and "Traceback" not in err
 
 
-def test_a_sliding_start_outside_the_domain_is_bad_input_and_a_reached_one_is_a_failed_run(capsys):
-    """A start lying flat (theta = 0) with a skid is refused before any phase (exit 2, the domain named);
-    a skid that carries the disk through flat (theta = 1, velocity (1, 2)) reaches theta < 0 while sliding:
-    the run fails (exit 1, naming the phase), it is not the user's input that was wrong."""
+def test_a_sliding_start_outside_the_domain_is_bad_input_and_a_reached_one_is_a_failed_run(capsys, monkeypatch):
+    """A start lying flat (theta = 0) with a skid is refused before any phase (exit 2, the domain named).  A skid
+    that lays the disk flat while sliding (theta = 0.3, velocity (0, 50), mu = 0.2) ends at the domain's end,
+    event:lies_flat (exit 0), theta within the event's allowance of 0 (measured 9.5e-14: the Euler angles'
+    rates blow up there and the steps stall ulps before the root).  Negative control: the same run judged
+    against a narrower domain (theta > 0.3) leaves it: the issue's run (theta = 1.2, psidot = 10, mu = 0.5) dips
+    to theta = 0.2 by t = 0.17 s: failed:outside_domain, exit 1, the run up to there."""
     from verify.cli import main
 
     code = main(["trajectory", "disk+coulomb", "--state", "theta=0", "--friction", "0.5", "--velocity", "1,2",
                  "--t-end", "0.2"])
     out, err = capsys.readouterr()
     assert code == 2 and out == "" and "outside the domain" in err and "Traceback" not in err
-    code = main(["trajectory", "disk+coulomb", "--state", "theta=1", "--friction", "0.5", "--velocity", "1,2",
-                 "--t-end", "0.2"])
+    flat = ["trajectory", "disk+coulomb", "--state", "theta=0.3", "--friction", "0.2", "--velocity", "0,50",
+            "--t-end", "1", "--format", "json"]
+    code = main(flat)
     out, err = capsys.readouterr()
-    assert code == 1 and "rolling phase" in err and "cannot start" in err and "Traceback" not in err
+    record = json.loads(out)
+    assert code == 0 and record["outcome"] == "event:lies_flat", (record["outcome"], err)
+    assert 0 <= float(record["state"]["theta"]) <= 1e-12
+    right = hybrid._domain_end
+    monkeypatch.setattr(hybrid, "_domain_end", lambda end, prec: prec.number("0.3") if end == 0 else right(end, prec))
+    code = main(["trajectory", "disk+coulomb", "--state", "theta=1.2", "--state", "psidot=10", "--friction", "0.5",
+                 "--t-end", "0.3", "--format", "json"])
+    out, err = capsys.readouterr()
+    record = json.loads(out)
+    assert code == 1 and record["outcome"] == "failed:outside_domain" and "left its domain" in err
+    assert float(record["state"]["theta"]) < 0.3  # the run up to the first output outside

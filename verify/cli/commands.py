@@ -87,8 +87,8 @@ def _coulomb_trajectory(args, session: Session, precision) -> int:
     except ValueError as err:
         raise UsageError(str(err)) from None
     except IntegrationError as err:
-        if err.trajectory is None:
-            raise RunFailed(str(err)) from None
+        if err.trajectory is None or len(err.trajectory.t) == 0:
+            raise RunFailed(f"{err} ({err.outcome})") from None
         sol, failed = err.trajectory, err
     p = sol.precision
     record = {

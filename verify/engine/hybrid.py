@@ -55,7 +55,7 @@ import sympy as sp
 from models import coulomb
 from models.symbols import STATE_NAMES
 
-from . import heyoka_log, slip_onset
+from . import heyoka_log, hybrid_guards as guards, slip_onset
 from .compile import friction_function, symbol_map, to_heyoka
 from .problem import max_step
 from .single import solve as solve_rolling
@@ -64,6 +64,8 @@ from .validation import InvalidStart, first_problem, parameters as resolve_param
 from .validation import state as resolve_state
 from ..precision import Precision, parse_precision
 
+#: The sliding phase's event where Painleve's margin reaches 0 (:func:`models.coulomb.painleve_margin`).
+JAM_EVENT = "painleve_margin"
 #: Sliding-phase state (models.coulomb): the eight, the slip speed and direction, the work.
 SLIDING_STATE_NAMES = coulomb.SLIDING_STATE_NAMES
 _SLIP, _DIRECTION, _WORK = 8, 9, 10
@@ -105,11 +107,16 @@ class HybridSolution:
     energy_scale : float
         The largest term scale of E on the run (sum of the absolute values of its terms).
     energy_plus_work_drift_in_eps : float
-        max |E + W - E(0)| / (energy_scale eps): the energy balance at the precision.
+        max over the outputs of |E + W - E(0)| / (eps times the largest term scale of E up to that output):
+        the energy balance at the precision (:func:`verify.engine.hybrid_guards.balance_drift_in_eps`); a
+        run is handed out only if it is within :func:`~verify.engine.hybrid_guards.balance_bound_in_eps`.
     switch_times : tuple
         Times where a phase ended and the next began.
     outcome, status, message
-        'ok' (status 0) or the last phase's terminal event (status 1).
+        'ok' (status 0), the last phase's terminal event ('event:lies_flat', 'event:contact_lost', status 1),
+        or, on the partial run an :class:`IntegrationError` carries, its named failure
+        (:mod:`verify.engine.hybrid_guards`: 'failed:outside_domain', 'failed:energy_balance',
+        'failed:switch_constraint', 'painleve:jam'; 'unsupported:slip_onset'; heyoka's 'failed:...').
     """
 
     model: str
@@ -146,6 +153,7 @@ class _Compiled:
     rhs_function: object  # cfunc: 11 states -> their time derivatives
     slip_rates: object  # cfunc: 8 states + alpha -> [e . du/dt, e_perp . du/dt] (no s in either)
     n_pars: int
+    check_function: object  # cfunc: 11 states -> [P, sliding v_C (x, y), rolling v_C (x, y)]
 
 
 @lru_cache(maxsize=None)
@@ -165,6 +173,7 @@ def compiled(name: str, precision: Precision) -> _Compiled:
         (dom.below, theta - to_heyoka(dom.theta_min, mapping), hy.event_direction.negative),
         (dom.above, theta - to_heyoka(dom.theta_max, mapping), hy.event_direction.positive),
         ("contact_lost", to_heyoka(sliding.normal_force, mapping), hy.event_direction.negative),
+        (JAM_EVENT, to_heyoka(sliding.painleve_margin, mapping), hy.event_direction.negative),
     )
     kw = precision.integrator_kwargs()
     sliding_function = hy.cfunc([to_heyoka(e, mapping) for e in (sliding.energy, sliding.normal_force,
@@ -180,8 +189,12 @@ def compiled(name: str, precision: Precision) -> _Compiled:
     rhs_function = hy.cfunc([rhs for _, rhs in system], list(variables), **kw)
     slip_rates = hy.cfunc([to_heyoka(e, mapping) for e in (sliding.slip_rate_along, sliding.slip_rate_across)],
                           list(variables[:8]) + [variables[_DIRECTION]], **kw)
+    # the guards' quantities: Painleve's margin, and v_C two ways (the sliding phase's, with its slip, and the
+    # rolling model's no-slip one from models.rolling): at a stick they must agree
+    check_function = hy.cfunc([to_heyoka(e, mapping) for e in (sliding.painleve_margin, *sliding.cm_velocity_xy,
+                                                                 *rolling.velocity_xy)], list(variables), **kw)
     return _Compiled(precision, system, events, sliding_function, rolling_function, launch_function, rhs_function,
-                     slip_rates, len(rolling.parameters) + 1)
+                     slip_rates, len(rolling.parameters) + 1, check_function)
 
 
 def _terms(expr):
@@ -314,12 +327,15 @@ class _CollapseWatch:
         return not stop
 
 
-#: How close to a stick (in units of eps max(|t|, step cap)) a sliding phase that ended in a non-finite
-#: state may be finished by one Euler step from its last finite state.  Near a stick alpha converges to
-#: its limit only like (time left)^kappa, with kappa < 1 on the examples, so the step's error is of
-#: order (time left)^(1 + kappa), not (time left)^2: it is kept to ulps, not to sqrt(eps) (measured:
-#: a finish of 130 ulps leaves E + W within 1 eps).
-FINISH_ULPS = 2 ** 10
+#: How close to a stick (in units of eps max(|t|, step cap)) a sliding phase whose steps collapsed (or
+#: ended in a non-finite state) may be finished by one Euler step from its last finite state.  Near a
+#: stick alpha converges to its limit only like (time left)^kappa, with kappa < 1 on the examples, so its
+#: error is of order (time left)^(1 + kappa); but alpha is dropped at the stick, and the eight and W are
+#: smooth there: their error is (time left)^2 |y''| / 2, below eps of the state for time left up to
+#: ~sqrt(eps) / rate, far above this (2^16 ulps of t: (1.5e-11 t)^2 times rates^2).  The stick's own
+#: guards (the no-slip velocity, E + W) check the result.  Measured: the steps stall 130 to 1160 ulps
+#: before the stick (2^10 was too few for the steady circle at 0.99 of its mu_req).
+FINISH_ULPS = 2 ** 16
 
 
 def launch_slip(c: _Compiled, y0, velocity, par_vector):
@@ -337,9 +353,18 @@ class _Run:
         self.phases, self.rolling_runs = [], []
         self.outcome, self.message = "ok", "t_end reached"
         self.work_so_far = prec.zero()
+        self.steps = 0  # Taylor steps of every phase so far (the energy balance's bound grows with them)
+        dom = _rolling(name).domain
+        self.domain_events = (dom.below, dom.above)
+        self.theta_bounds = tuple(_domain_end(e, prec) for e in (dom.theta_min, dom.theta_max))
 
     def _grid_after(self, t0):
         return [g for g in self.grid if g > t0]
+
+    def truncate(self, n: int) -> None:
+        """Keep the first ``n`` outputs (a guard that failed keeps the run through the output it failed at)."""
+        for rows in (self.t, self.y, self.energy, self.scale, self.slip, self.direction, self.work, self.index):
+            del rows[n:]
 
     def _record(self, kind, times, states, energy, scale, slip, direction, work):
         k = len(self.phases) - 1
@@ -356,12 +381,13 @@ class _Run:
     def sliding(self, t0, y0, onset=None):
         """A sliding phase from (t0, y0); ``onset``: (time, state) where it began at s = 0 (:meth:`onset`), if so."""
         prec, c = self.prec, self.c
+        begun = t0 if onset is None else onset[0]
+        self._check_sliding_start(t0, y0, onset)
         ta = _copy(_sliding_template(self.name, prec))
         ta.time = t0
         ta.state[:] = y0
         ta.pars[:] = self.par_vector
         ta.reset_cooldowns()
-        begun = t0 if onset is None else onset[0]
         self.phases.append(Phase("sliding", begun, None, "running"))
         grid = prec.array([t0] + self._grid_after(t0))
         cap = max_step(y0[:8], self.pars, prec)
@@ -369,23 +395,21 @@ class _Run:
         with heyoka_log.collect() as messages:
             result = ta.propagate_grid(grid, max_delta_t=cap, callback=collapse)
         outcome, out = result[0], np.asarray(result[-1])
+        self.steps += int(result[3])
         times = list(grid[: len(out)])
         states = [np.array(r) for r in out]
         if onset is not None:  # the phase's first output is where it began, s = 0, not the Euler step's end
             times[0], states[0] = onset[0], np.array(onset[1])
         if outcome == hy.taylor_outcome.time_limit:
             ended = "ok"
-        elif outcome == hy.taylor_outcome.err_nf_state and self._near_stick(collapse):
-            ended = "sticks"
+        elif outcome == hy.taylor_outcome.cb_stop or (outcome == hy.taylor_outcome.err_nf_state
+                                                      and collapse.last_state is not None):
+            # the steps collapsed (or ended non-finite just after): at a stick, at the domain's end, or a failure
             ta.time, ta.state[:] = collapse.last, collapse.last_state
-            t_stick, y_stick = self._finish_stick(ta)
-            times.append(t_stick)
-            states.append(y_stick)
-        elif outcome == hy.taylor_outcome.cb_stop:
-            ended = "sticks"
-            t_stick, y_stick = self._finish_stick(ta)
-            times.append(t_stick)
-            states.append(y_stick)
+            ended, t_last, y_last = self._after_collapse(ta, collapse, outcome)
+            if all(np.isfinite(np.asarray(y_last, dtype=float))):
+                times.append(t_last)
+                states.append(y_last)
         elif 0 <= -int(outcome) - 1 < len(c.events):  # terminal event i ends with outcome -i - 1
             ended = c.events[-int(outcome) - 1][0]
             times.append(ta.time)
@@ -395,6 +419,10 @@ class _Run:
             raise IntegrationError(f"sliding phase of {self.name} stopped at t = {ta.time}: heyoka outcome {outcome}"
                                    + (f" ({'; '.join(m.text for m in messages)})" if messages else ""), label, ta.time,
                                    list(ta.state), self.result())
+        stick_raw = None
+        if ended == "sticks":  # the state handed over has s = 0; the guard reads the slip it had (_check_stick)
+            stick_raw = states[-1].copy()
+            states[-1][_SLIP] = prec.zero()
         if messages:
             raise IntegrationError(f"sliding phase of {self.name}: heyoka warned: {'; '.join(m.text for m in messages)}",
                                    "failed:event_detection", ta.time, list(ta.state), None)
@@ -408,25 +436,50 @@ class _Run:
         t1 = times[-1]
         self.phases[-1] = Phase("sliding", begun, t1, ended)
         self.work_so_far = states[-1][_WORK]
+        if ended.startswith("failed:"):  # the steps collapsed where no switch explains it: the run up to there
+            raise guards.fail(self, ended, self.collapse_message, t1, states[-1])
+        self._check_phase("sliding", times, [s[0] for s in states], [s[3] for s in states], ended, states[-1])
+        if ended == JAM_EVENT:
+            raise self._jam(t1, states[-1], "reaches")
         if ended == "sticks":
+            self._check_stick(t1, stick_raw, max(abs(float(s[_SLIP])) for s in states))
             y8 = prec.array(list(states[-1][:8]))
             return self._after_stick(t1, y8)
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", f"the sliding phase ended at {ended}"
 
-    def _near_stick(self, watch) -> bool:
-        """Whether the last finite state the watch saw is within FINISH_ULPS of a stick, s falling."""
-        if watch.last_state is None:
-            return False
-        y = watch.last_state
-        if not all(np.isfinite(np.asarray(y, dtype=float))):
-            return False
+    def _after_collapse(self, ta, watch, outcome):
+        """(ended, t, state) where a sliding phase's steps collapsed (:class:`_CollapseWatch`) at ``ta``'s state.
+
+        * within :data:`FINISH_ULPS` of a stick (s falling): the stick, by :meth:`_finish_stick`;
+        * with theta within the terminal event's allowance of a domain end and moving towards it
+          (:data:`~verify.engine.hybrid_guards.EVENT_ULPS`): that end's event (``lies_flat``).  Near
+          theta = 0 the Euler angles' rates blow up like 1 / sin(theta) (phi' = omega2 / sin(theta)), so a
+          slip whose sideways rate is a rounding away from 0 stalls the steps within ulps of the end,
+          before the event's root (measured: theta = 9.5e-14, 1.5e-13 allowed);
+        * otherwise ``failed:step_size_collapse`` (or ``failed:non_finite`` for a state that became so).
+        """
+        y = np.array(ta.state)
+        t = ta.time
+        finite = all(np.isfinite(np.asarray(y, dtype=float)))
         with np.errstate(divide="ignore", invalid="ignore"):
-            rate = _evaluate(self.c.rhs_function, y, self.par_vector)
-        if not rate[_SLIP] < 0:
-            return False
-        left = float(-y[_SLIP] / rate[_SLIP])
-        return left <= FINISH_ULPS * self.prec.eps * max(abs(float(watch.last)), watch.cap)
+            rate = _evaluate(self.c.rhs_function, y, self.par_vector) if finite else None
+        if finite and rate[_SLIP] < 0:
+            left = float(-y[_SLIP] / rate[_SLIP])
+            if left <= FINISH_ULPS * self.prec.eps * max(abs(float(t)), watch.cap):
+                t_stick, y_stick = self._finish_stick(ta)
+                return "sticks", t_stick, y_stick
+        if finite:
+            lo, hi = self.theta_bounds
+            allowance = guards.EVENT_ULPS * self.prec.eps * (abs(float(y[3])) * max(abs(float(t)), 1.0) + 1.0)
+            for edge, name, towards in ((lo, self.domain_events[0], y[3] < 0), (hi, self.domain_events[1], y[3] > 0)):
+                if towards and abs(float(y[0] - edge)) <= allowance:
+                    return name, t, y
+        self.collapse_message = (f"the sliding phase of {self.name}: the steps collapsed at t = {float(t):.9g} (theta"
+                                 f" = {float(y[0]):.6g}, slip speed {float(y[_SLIP]):.3g}) away from a stick and "
+                                 "from the domain's ends")
+        return ("failed:non_finite" if outcome == hy.taylor_outcome.err_nf_state or not finite
+                else "failed:step_size_collapse"), t, y
 
     def _finish_stick(self, ta):
         """The last ulps before a stick whose steps collapsed (:class:`_CollapseWatch`): one Euler step.
@@ -439,14 +492,8 @@ class _Run:
         with np.errstate(divide="ignore", invalid="ignore"):  # alpha' is 0/0 if s is 0 already; alpha is dropped
             rate = _evaluate(self.c.rhs_function, y, self.par_vector)
         rate[_DIRECTION] = prec.zero()
-        if not rate[_SLIP] < 0:
-            raise IntegrationError(f"sliding phase of {self.name}: the steps collapsed at t = {ta.time} with the slip "
-                                   f"speed {y[_SLIP]} not falling", "failed:step_size_collapse", ta.time, list(y),
-                                   self.result())
         tau = -y[_SLIP] / rate[_SLIP]
-        y_stick = y + tau * rate
-        y_stick[_SLIP] = prec.zero()
-        return ta.time + tau, y_stick
+        return ta.time + tau, y + tau * rate  # s there is 0 to the rounding of y + tau y' (_check_stick)
 
     def _after_stick(self, t, y8):
         """Sliding -> rolling at s = 0: the eight components as they are, if rolling holds there."""
@@ -508,9 +555,12 @@ class _Run:
                 self.phases.pop()
                 return self.onset(t0, y8, f"rolling from t = {t0} needs more friction than mu: {err}")
             # a state the run reached, not one the user gave: a failed run, not bad input
-            raise IntegrationError(f"rolling phase of {self.name} from t = {t0} cannot start: {err}",
-                                   "failed", t0, list(y8), None) from None
+            self.phases.pop()
+            outcome = guards.OUTSIDE_DOMAIN if err.reason == "outside_domain" else guards.SWITCH_CONSTRAINT
+            raise guards.fail(self, outcome, f"the rolling phase of {self.name} from t = {float(t0):.9g} cannot "
+                                             f"start: {err}", t0, y8) from None
         self.rolling_runs.append(sol)
+        self.steps += int(sol.steps)
         states = [np.array(sol.y[:, j]) for j in range(sol.y.shape[1])]
         times = [t0 + tau for tau in sol.t]
         values = _evaluate(self.c.rolling_function, np.ascontiguousarray(sol.y), self.par_vector[:-1])
@@ -519,7 +569,9 @@ class _Run:
                      [nan] * len(times), [self.work_so_far] * len(times))
         ended = "ok" if sol.status == 0 else (sol.outcome[6:] if sol.outcome.startswith("event:") else sol.outcome)
         self.phases[-1] = Phase("rolling", t0, times[-1], ended)
+        self._check_phase("rolling", times, sol.y[0], sol.y[3], ended, sol.y[:, -1])
         if ended == "slips":
+            self._check_slips(times[-1], np.ascontiguousarray(sol.y[:, -1]))
             return self.slip_onset(times[-1], np.ascontiguousarray(sol.y[:, -1]))
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", sol.message
@@ -549,14 +601,111 @@ class _Run:
         self.outcome, self.message = "unsupported:slip_onset", message
         return UnsupportedTransition(message, "unsupported:slip_onset", t, None, self.result())
 
+    # --- the guards (verify.engine.hybrid_guards) --------------------------------------------------
+    def _check_phase(self, kind, times, thetas, thetadots, ended, last):
+        """Domain at every output, N = 0 where the phase ended at contact_lost, then E + W so far (``last``:
+        the phase's last state, the eight or the sliding eleven)."""
+        guards.check_domain(self, kind, times, thetas, *self.theta_bounds, ended, thetadots)
+        if ended == "contact_lost":
+            last = self.prec.array(list(last))
+            if kind == "sliding":
+                def normal(y):
+                    return _evaluate(self.c.sliding_function, y, self.par_vector)[1:2]
+            else:
+                friction = friction_function(_rolling(self.name), self.prec).function
+
+                def normal(y):
+                    return _evaluate(friction, y, self.par_vector[:-1])[:1]
+            self._check_constraint("contact_lost event", normal, last, times[-1], "N / (M g)")
+        guards.check_balance(self)
+
+    def _rates(self, y):
+        """d/dt of a state: the sliding rows' (the eight's rates at s = 0 with alpha the slip's direction are the
+        rolling ones where mu_req = mu; alpha' is 0/0 there and not read)."""
+        full = self.prec.array(list(y) + [self.prec.zero(), self.prec.zero(), self.work_so_far]) if len(y) == 8 else y
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rates = _evaluate(self.c.rhs_function, full, self.par_vector)
+        rates[_DIRECTION] = self.prec.zero()
+        return rates[: len(y)]
+
+    def _check_constraint(self, name, function, y, t, what, rates=None):
+        """|function(y)| within SWITCH_ULPS of what one ulp moves it (:func:`~.hybrid_guards.one_ulp_sensitivity`)."""
+        rates = self._rates(y) if rates is None else rates
+        cap = max_step(y[:8], self.pars, self.prec)
+        bound = guards.SWITCH_ULPS * guards.one_ulp_sensitivity(function, y, rates, t, cap, self.prec)
+        value = np.asarray(function(y))
+        guards.check_switch(self, name, float(np.max(np.abs(value))), bound, t, y, what)
+
+    def _check_sliding_start(self, t0, y0, onset):
+        """A sliding phase starts inside the domain, with s >= 0, with Painleve's margin P > 0, and, where it
+        began at s = 0 (``onset``: time, state), with the E + W of its onset (series or Taylor start)."""
+        begun = t0 if onset is None else onset[0]
+        guards.check_domain(self, "sliding", [t0], [y0[0]], *self.theta_bounds, None, recorded=False)
+        if onset is not None:
+            before, after = (_evaluate(self.c.sliding_function, self.prec.array(list(y)), self.par_vector)
+                             for y in (onset[1], y0))
+            scale = max(_term_scale(before, 2), _term_scale(after, 2))
+            gap = (after[0] + y0[_WORK]) - (before[0] + onset[1][_WORK])
+            guards.check_switch(self, "onset of slip", gap, guards.BALANCE_PER_SWITCH * self.prec.eps * scale, begun,
+                                y0, f"E + W at t = {float(t0):.9g} (its start) minus E + W at the onset")
+        if not y0[_SLIP] >= 0:
+            where = "sliding phase" if onset is None else "onset of slip"
+            raise guards.fail(self, guards.SWITCH_CONSTRAINT, f"{self.name}: the {where} from t = {float(begun):.9g}"
+                                                              f" starts with a slip speed {float(y0[_SLIP]):.3g} < 0",
+                              t0, y0)
+        margin = _evaluate(self.c.check_function, y0, self.par_vector)[0]
+        if not margin > 0:
+            raise self._jam(begun, y0, "starts at")
+
+    def _jam(self, t, y, where):
+        from models.coulomb import critical_friction
+
+        critical = critical_friction(self.name, {k: str(v) for k, v in self.pars.items()})
+        return guards.fail(self, guards.PAINLEVE_JAM, f"{self.name}: the sliding phase {where} Painleve's jam at "
+                                                       f"t = {float(t):.9g} (margin P <= 0 at theta = {float(y[0]):.6g}):"
+                                                       f" with Coulomb friction mu = {float(self.mu):.6g}, above this "
+                                                       f"body's {critical:.6g}, the rigid body has no unique motion from "
+                                                       "there", t, y)
+
+    def _check_stick(self, t, raw, slip_max):
+        """At a stick the sliding state's v_C (its slip s still in it) is the rolling model's no-slip v_C."""
+        def slip(y):  # v_C of the sliding state minus the rolling model's no-slip v_C: the contact's slip
+            values = _evaluate(self.c.check_function, y, self.par_vector)
+            return [values[1] - values[3], values[2] - values[4]]
+
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rates = _evaluate(self.c.rhs_function, raw, self.par_vector)
+        if raw[_SLIP] == 0:  # alpha' is 0/0; alpha does not enter v_C at s = 0
+            rates[_DIRECTION] = self.prec.zero()
+        self._check_constraint("stick", slip, raw, t, "v_C - v_C(no slip) (the contact's slip, R/s)", rates)
+
+    def _check_slips(self, t, y8):
+        """At a slips event the rolling motion needs mu_req = mu."""
+        friction = friction_function(_rolling(self.name), self.prec).function
+
+        def excess(y):
+            return _evaluate(friction, y, self.par_vector[:-1])[1:] - self.mu
+
+        y8 = self.prec.array(list(y8))
+        rates = self._rates_at_slip(y8)
+        self._check_constraint("slips event", excess, y8, t, "mu_req - mu", rates)
+
+    def _rates_at_slip(self, y8):
+        """The eight's rates where mu_req = mu: the sliding rows' at s = 0 with alpha the direction of -F_req
+        (the friction is then the one rolling needs, so the accelerations are the rolling ones)."""
+        alpha = self.prec.number(self.slip_direction(y8))
+        full = self.prec.array(list(y8) + [self.prec.zero(), alpha, self.work_so_far])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rates = _evaluate(self.c.rhs_function, full, self.par_vector)
+        return rates[:8]
+
     # --- the record ------------------------------------------------------------------------------
     def result(self) -> HybridSolution:
         prec = self.prec
         y = np.array(self.y).T if self.y else np.zeros((8, 0))
         energy, work = np.array(self.energy), np.array(self.work)
         scale = max(float(s) for s in self.scale) if self.scale else float("nan")
-        balance = energy + work
-        drift = max(abs(float(b - balance[0])) for b in balance) / (scale * prec.eps) if len(balance) else float("nan")
+        drift = float(np.max(guards.balance_drift_in_eps(energy, work, self.scale, prec.eps))) if len(energy) else float("nan")
         switches = tuple(p.t_end for p in self.phases[:-1])
         status = 0 if self.outcome == "ok" else 1
         return HybridSolution(
@@ -667,6 +816,11 @@ def _pi(prec: Precision):
 
 def _bits(prec: Precision) -> int:
     return int(round(1 - np.log2(prec.eps)))
+
+
+def _domain_end(end, prec: Precision):
+    """A domain end (sympy: 0, pi, pi/2) as a number of the run's precision."""
+    return prec.number(str(sp.N(end, int(_bits(prec) * 0.302) + 10)))
 
 
 def _dtype(prec: Precision):
