@@ -336,6 +336,11 @@ class _CollapseWatch:
 #: guards (the no-slip velocity, E + W) check the result.  Measured: the steps stall 130 to 1160 ulps
 #: before the stick (2^10 was too few for the steady circle at 0.99 of its mu_req).
 FINISH_ULPS = 2 ** 16
+#: Painleve's margin below which a collapse of the steps is the jam's: N and the accelerations are ~1 / P
+#: times their frictionless size (a thousandfold here), which only mu above the body's critical value
+#: reaches (P >= 1 - mu / mu_c otherwise).  Measured on random skids at mu = 1.4 to 1.9 (disk, mu_c = 1.118):
+#: the steps stall at P = 4e-5 to 2.5e-7 with N / (M g) = 9e3 to 1.6e6.
+JAM_MARGIN = 2 ** -10
 
 
 def launch_slip(c: _Compiled, y0, velocity, par_vector):
@@ -436,11 +441,11 @@ class _Run:
         t1 = times[-1]
         self.phases[-1] = Phase("sliding", begun, t1, ended)
         self.work_so_far = states[-1][_WORK]
-        if ended.startswith("failed:"):  # the steps collapsed where no switch explains it: the run up to there
+        if ended.startswith("failed:") or ended == guards.PAINLEVE_JAM:  # the steps collapsed: the run up to there
             raise guards.fail(self, ended, self.collapse_message, t1, states[-1])
         self._check_phase("sliding", times, [s[0] for s in states], [s[3] for s in states], ended, states[-1])
         if ended == JAM_EVENT:
-            raise self._jam(t1, states[-1], "reaches")
+            raise guards.fail(self, guards.PAINLEVE_JAM, self._jam_message(t1, states[-1], "reaches", 0), t1, states[-1])
         if ended == "sticks":
             self._check_stick(t1, stick_raw, max(abs(float(s[_SLIP])) for s in states))
             y8 = prec.array(list(states[-1][:8]))
@@ -457,6 +462,8 @@ class _Run:
           theta = 0 the Euler angles' rates blow up like 1 / sin(theta) (phi' = omega2 / sin(theta)), so a
           slip whose sideways rate is a rounding away from 0 stalls the steps within ulps of the end,
           before the event's root (measured: theta = 9.5e-14, 1.5e-13 allowed);
+        * with Painleve's margin P below :data:`JAM_MARGIN`: ``painleve:jam`` (N and the accelerations grow
+          like 1 / P, so the steps stall before P's event can fire);
         * otherwise ``failed:step_size_collapse`` (or ``failed:non_finite`` for a state that became so).
         """
         y = np.array(ta.state)
@@ -470,6 +477,10 @@ class _Run:
                 t_stick, y_stick = self._finish_stick(ta)
                 return "sticks", t_stick, y_stick
         if finite:
+            margin = _evaluate(self.c.check_function, y, self.par_vector)[0]
+            if margin <= JAM_MARGIN:
+                self.collapse_message = self._jam_message(t, y, "reaches", margin)
+                return guards.PAINLEVE_JAM, t, y
             lo, hi = self.theta_bounds
             allowance = guards.EVENT_ULPS * self.prec.eps * (abs(float(y[3])) * max(abs(float(t)), 1.0) + 1.0)
             for edge, name, towards in ((lo, self.domain_events[0], y[3] < 0), (hi, self.domain_events[1], y[3] > 0)):
@@ -655,17 +666,16 @@ class _Run:
                               t0, y0)
         margin = _evaluate(self.c.check_function, y0, self.par_vector)[0]
         if not margin > 0:
-            raise self._jam(begun, y0, "starts at")
+            raise guards.fail(self, guards.PAINLEVE_JAM, self._jam_message(begun, y0, "starts at", margin), begun, y0)
 
-    def _jam(self, t, y, where):
+    def _jam_message(self, t, y, where, margin):
         from models.coulomb import critical_friction
 
         critical = critical_friction(self.name, {k: str(v) for k, v in self.pars.items()})
-        return guards.fail(self, guards.PAINLEVE_JAM, f"{self.name}: the sliding phase {where} Painleve's jam at "
-                                                       f"t = {float(t):.9g} (margin P <= 0 at theta = {float(y[0]):.6g}):"
-                                                       f" with Coulomb friction mu = {float(self.mu):.6g}, above this "
-                                                       f"body's {critical:.6g}, the rigid body has no unique motion from "
-                                                       "there", t, y)
+        return (f"{self.name}: the sliding phase {where} Painleve's jam at t = {float(t):.9g} (margin P = "
+                f"{float(margin):.3g} at theta = {float(y[0]):.6g}; N and the accelerations grow like 1 / P): with "
+                f"Coulomb friction mu = {float(self.mu):.6g}, above this body's critical {critical:.6g}, the rigid "
+                "body has no unique smooth motion from there")
 
     def _check_stick(self, t, raw, slip_max):
         """At a stick the sliding state's v_C (its slip s still in it) is the rolling model's no-slip v_C."""
