@@ -48,3 +48,13 @@ def test_rule_table(leaves, offset, want):
 def test_a_linearly_unstable_rate_is_not_this_situation():
     """Fig. 19 RHS (1.9 sqrt(g/a), below the sleeping threshold) leaves by the linear instability: no rule verdict."""
     assert finite_offset_verdict(False, True, 0.01, (0.0, 0.001)) is None
+
+
+def test_the_thresholds_table_applies_the_same_rule():
+    """The table's verdict cell (verify.studies.summary._verdict) calls the same rule: a caption's start that
+    leaves is qualified, one that stays is an erratum; a rate whose stability the caption states rightly agrees."""
+    from verify.studies.summary import _verdict
+
+    assert "qualified (the one rule)" in _verdict(False, True, 18.8, 18.6756, ("event:rim_switch", "ok"))
+    assert "erratum (the one rule)" in _verdict(False, True, 18.8, 18.6756, ("ok", "ok"))
+    assert _verdict(False, False, 18.0, 18.6756, ("event:rim_switch", "ok")) == "agrees"
