@@ -29,8 +29,9 @@ HORIZONTAL_AXLE = s * E3 - c * E2  # unit vector along the horizontal projection
 L_PERP = sp.Symbol("L_perp")  # the horizontal part of L (Eqs. 19, 51)
 
 SCALED = "I <- I/(m R^2), g <- g/R, h <- h/R, as the paper states before Eq. 49 (so R = 1)"
-RING = ("the in-hand ring of the text before Fig. 9 (R = 3.66, h = 1.59, w = 0.5 cm as exact rationals: "
-        "I3 = 0.87272, I1 = 0.49927, h = 0.43443) with g/R = 980 s^-2")
+#: The annular ring set, named as such (the figure runs use the printed set: simulations.runs.PRINTED_SET)
+RING = ("the annular ring set: the in-hand ring of the text before Fig. 9 (R = 3.66, h = 1.59, w = 0.5 cm as exact "
+        "rationals: I3 = 0.87272, I1 = 0.49927, h = 0.43443; the model's defaults) with g/R = 980 s^-2")
 
 
 def _rows():

@@ -8,6 +8,7 @@ import math
 from models import ring as ring_body
 
 from ..precision import parse_precision
+from ..studies.finite_offset import RULE
 from ..studies.summary import RING_OTHER_SET, TILTS, with_other_set
 
 
@@ -88,9 +89,10 @@ def _threshold_lines(thresholds: list, captions: list) -> list:
                          f"{', '.join(v['multipliers'])} |")
     lines += [
         "",
-        "**Figure captions against the exact thresholds.** 'finite-amplitude' marks a panel whose outcome is real at the",
-        "paper's start (the claims section confirms the simulations) but is not the linear stability the caption pairs",
-        "it with: the rate lies on the stable side of the exact threshold, and a start 100 times closer stays close.",
+        "**Figure captions against the exact thresholds.** 'finite-amplitude' marks a panel whose outcome is not the",
+        "linear stability the caption pairs it with: the rate lies on the stable side of the exact threshold, yet the",
+        "caption says the motion leaves. " + RULE + " Here 'leaves' is the run from the caption's start (Fig. 11 RHS:",
+        "the equilibrium plus the LHS's offset, as in the claims), with one 100 times closer beside it.",
         "",
         "| figure | case | caption | exact threshold and runs | verdict |",
         "|---|---|---|---|---|",

@@ -8,6 +8,7 @@ results.json; :func:`render` turns that dict, and nothing else, into Markdown.
 from __future__ import annotations
 
 from ..claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
+from ..studies.finite_offset import RULE
 from .markup import inline_quote, text
 
 SEVERITY_WORDS = {"result": "a number or conclusion is wrong", "typo": "the printed form is wrong, what follows is right",
@@ -35,6 +36,11 @@ def build(claims: list, studies: dict) -> dict:
     eq45_other = [(r["theta"], r["relative_error"]) for r in _spindown(sd, "disk", "zero-vertical-spin")]
     eq61 = {fam: [(r["theta"], r["relative_error"]) for r in _spindown(sd, "ring", fam)]
             for fam in ("zero-vertical-spin", "cm-at-rest")}
+    ring_rows = _spindown(sd, "ring", "zero-vertical-spin") + _spindown(sd, "ring", "cm-at-rest")
+    # which ring parameter set the limits are for, and the other set's limits (the rows carry both)
+    eq61_set = ring_rows[-1].get("parameter_set") if ring_rows else None
+    eq61_annular = {fam: [(r["theta"], r.get("relative_error_annular")) for r in _spindown(sd, "ring", fam)]
+                    for fam in ("zero-vertical-spin", "cm-at-rest")}
     errata = [{"id": c["id"], "source": c["source"], "severity": c["severity"], "quote": _first(c["quote"]),
                "correction": c["correction"]} for c in claims if c["verdict"] == ERRATUM]
     errata.sort(key=lambda x: SEVERITIES.index(x["severity"]))  # stable: paper order within a severity
@@ -49,9 +55,28 @@ def build(claims: list, studies: dict) -> dict:
                    "eq41": verdict.get("eq-41"), "footnote2": verdict.get("footnote-2"),
                    "fig5": [verdict.get("fig-5-lhs"), verdict.get("fig-5-rhs")]},
         "divergence": {"eq45_cm_at_rest_max_rel_error": f"{eq45_exact:.1e}", "eq45_zero_vertical_spin": eq45_other,
-                       "eq61": eq61, "eq45": verdict.get("eq-45"), "eq61_verdict": verdict.get("eq-61")},
+                       "eq61": eq61, "eq45": verdict.get("eq-45"), "eq61_verdict": verdict.get("eq-61"),
+                       "eq61_parameter_set": eq61_set, "eq61_annular": eq61_annular},
         "errata": errata, "qualified": qualified, "undecided": undecided,
     }
+
+
+#: How the summary names a ring parameter set (the rows say which one they are for).
+RING_SET_WORDS = {"printed": "for the printed ring set (I1 = 0.4993, I3 = 0.8727, h = 0.4344)",
+                  "annular": "for the annular ring set (the model's defaults)"}
+
+
+def _ring_set_words(d: dict) -> str:
+    name = d.get("eq61_parameter_set")
+    return f"{RING_SET_WORDS[name]}, " if name in RING_SET_WORDS else ""
+
+
+def _annular(d: dict, family: str) -> str:
+    """' (annular set: X)' beside a printed-set limit, when the rows carry the annular value."""
+    if d.get("eq61_parameter_set") != "printed":
+        return ""
+    rows = (d.get("eq61_annular") or {}).get(family) or []
+    return f" (annular set: {rows[-1][1]})" if rows and rows[-1][1] is not None else ""
 
 
 def _first(quote) -> str:
@@ -75,9 +100,10 @@ def render(s: dict) -> list:
         f"steady spin-down. Eq. 45 is exact on the family with the centre of mass at rest (largest relative error "
         f"{d['eq45_cm_at_rest_max_rel_error']}, round-off of 60-digit arithmetic) and the leading term on the family with "
         f"no vertical spin (relative error {z45[0][1]} at theta = {z45[0][0]}, {z45[-1][1]} at {z45[-1][0]}: like "
-        f"3 theta^2). Eq. 61, the ring's version, is wrong ({d['eq61_verdict']}): its relative error tends to "
-        f"{z61[-1][1]} on the family with no vertical spin (theta = {z61[-1][0]}) and {c61[-1][1]} with the centre of "
-        "mass at rest; the factor (1 - h) is spurious.",
+        f"3 theta^2). Eq. 61, the ring's version, is wrong ({d['eq61_verdict']}): {_ring_set_words(d)}its relative "
+        f"error tends to {z61[-1][1]}{_annular(d, 'zero-vertical-spin')} on the family with no vertical spin (theta = "
+        f"{z61[-1][0]}) and {c61[-1][1]}{_annular(d, 'cm-at-rest')} with the centre of mass at rest; the factor "
+        "(1 - h) is spurious.",
         "",
     ]
     if s["errata"]:
@@ -91,7 +117,7 @@ def render(s: dict) -> list:
     if s["qualified"]:
         lines += ["**Qualified captions** -- the described behaviour is reproduced only through a finite or unstated "
                   "perturbation or one unstated choice, while what the caption implies in general (a threshold, a "
-                  "sense) is wrong or holds only for that choice:", ""]
+                  "sense) is wrong or holds only for that choice. " + RULE, ""]
         lines += [f"- [{text(q['source'])}](#{q['id']}): {text(q['qualification'])}" for q in s["qualified"]]
         lines.append("")
     if s["undecided"]:

@@ -21,6 +21,7 @@ from models.steady import ring_theta0_limits, steady_state
 from verify.precision import parse_precision
 
 from .spindown import FAMILIES, family_quantities, family_state, precision_runs, spindown
+from .finite_offset import ERRATUM, QUALIFIED, finite_offset_verdict
 from .thresholds import GROWTH, bracket, linear_path, nonlinear_path, threshold, variational_w2
 
 #: The parameter set of "the paper's ring" in every row below, and the one it is compared with.
@@ -200,12 +201,22 @@ def stability_scan(model: str, motion: str, params: dict) -> list:
     return rows
 
 
-def _verdict(caption_stable: bool, linearly_stable: bool, rate, crit) -> str:
+def _verdict(caption_stable: bool, linearly_stable: bool, rate, crit, outcomes=()) -> str:
+    """'agrees', or the finite-amplitude case with the verdict of the one rule of :mod:`.finite_offset`
+    (the claims apply the same rule): ``outcomes`` are those of the runs from the caption's start and
+    from one 100 times closer to the equilibrium."""
     if caption_stable == linearly_stable:
         return "agrees"
     above = float(mpmath.mpf(rate) / crit - 1) * 100
-    return (f"finite-amplitude: the rate is {above:+.2f}% from the threshold, linearly "
-            f"{'stable' if linearly_stable else 'unstable'}; the panel's outcome comes from the size of the start offset")
+    text = (f"finite-amplitude: the rate is {above:+.2f}% from the threshold, linearly "
+            f"{'stable' if linearly_stable else 'unstable'}")
+    rule = finite_offset_verdict(linearly_stable, outcomes[0] != "ok") if outcomes and not caption_stable else None
+    closer = "stays" if outcomes[1:] == ("ok",) else "leaves too"
+    if rule == QUALIFIED:
+        return text + f"; the caption's start leaves and one 100 times closer {closer}: qualified (the one rule)"
+    if rule == ERRATUM:
+        return text + "; the caption's start stays: erratum (the one rule)"
+    return text + "; the panel's outcome comes from the size of the start offset"
 
 
 def caption_rows() -> list:
@@ -235,9 +246,10 @@ def caption_rows() -> list:
     other_rim = mpmath.pi / 2 - mpmath.mpf(steady_state("ring", "straight-line", 19, other)["theta"])
     for rate, says in (("19.3", "oscillates on one side"), ("18.8", "quickly exceeds pi/2")):
         lin = linear_deviation("ring", "straight-line", rate, "2e-4", ring, t_end="5")
-        runs = []
+        runs, outcomes = [], []
         for tilt in (2e-4, 2e-6):
             sol = solve("ring", "5", {"theta": mpmath.nstr(eq + tilt, 20), "psidot": rate}, ring, n_eval=801)
+            outcomes.append(sol.outcome)
             runs.append(f"tilt {tilt:g}: {sol.outcome}, max |dtheta| {max(abs(float(v) - float(eq)) for v in sol['theta']):.3g}")
         stable = mpmath.mpf(rate) > ring_straight
         rows.append({"figure": "Fig. 10", "case": f"psidot0 = {rate}, dtheta = 2e-4", "caption": says,
@@ -246,44 +258,52 @@ def caption_rows() -> list:
                               f"linearly {'stable' if stable else 'unstable'}; linear max |dtheta| in 5 s {lin:.3g} "
                               f"(rim at {with_other_set(f'{float(rim):.3f}', f'{float(other_rim):.3f}')}); nonlinear "
                               + "; ".join(runs),
-                     "verdict": _verdict(rate == "19.3", stable, rate, ring_straight)})
+                     "verdict": _verdict(rate == "19.3", stable, rate, ring_straight, tuple(outcomes))})
     ring_diam = threshold("ring", "diameter-spin", ring).value
     other_diam = threshold("ring", "diameter-spin", other).value
-    for rate, th0, says in (("31.3", "1.225", "oscillates"), ("25.7", "1.205", "quickly exceeds pi/2")):
+    # the LHS prints its start, 1.225 (its equilibrium plus 0.0104); the RHS prints its equilibrium, 1.205,
+    # and starts 'near' it: read, as in the claims, with the LHS's offset (verify.studies.finite_offset)
+    near = mpmath.mpf("1.225") - mpmath.mpf(steady_state("ring", "diameter-spin", "31.3", ring)["theta"])
+    for rate, th0, says in (("31.3", "1.225", "oscillates"), ("25.7", None, "quickly exceeds pi/2")):
         eq = mpmath.mpf(steady_state("ring", "diameter-spin", rate, ring)["theta"])
         other_eq = mpmath.mpf(steady_state("ring", "diameter-spin", rate, other)["theta"])
         stable = mpmath.mpf(rate) > ring_diam
-        offset = mpmath.mpf(th0) - eq
+        offset = mpmath.mpf(th0) - eq if th0 else near
         lin = linear_deviation("ring", "diameter-spin", rate, offset, ring, t_end="20")
-        runs = []
+        runs, outcomes = [], []
         for scale in (1, 100):
             sol = solve("ring", "20", {"theta": mpmath.nstr(eq + offset / scale, 20), "phidot": rate}, ring, n_eval=801)
+            outcomes.append(sol.outcome)
             runs.append(f"offset {float(offset / scale):+.2g}: {sol.outcome}, max |dtheta| "
                         f"{max(abs(float(v) - float(eq)) for v in sol['theta']):.3g}")
         shown, other_shown = mpmath.nstr(eq, 6, strip_zeros=False), mpmath.nstr(other_eq, 6, strip_zeros=False)
         beside = "" if shown == other_shown else f"; {RING_OTHER_SET}: {other_shown}"
-        rows.append({"figure": "Fig. 11", "case": f"phidot0 = {rate}, theta0 = {th0} (equilibrium {shown}{beside})",
+        start = (f"theta0 = {th0} (equilibrium {shown}{beside})" if th0 else
+                 f"started near theta_0 = 1.205 (its equilibrium {shown}{beside}), read as the equilibrium "
+                 f"{float(near):+.4f} (the LHS's offset)")
+        rows.append({"figure": "Fig. 11", "case": f"phidot0 = {rate}, {start}",
                      "caption": says, "parameter_set": RING_SET, "params": dict(ring),
                      "exact": f"threshold ({where}) {with_other_set(_nstr(ring_diam, 10), _nstr(other_diam, 10))}: "
                               f"linearly {'stable' if stable else 'unstable'}; linear max "
                               f"|dtheta| in 20 s {lin:.3g}; nonlinear " + "; ".join(runs),
-                     "verdict": _verdict(rate == "31.3", stable, rate, ring_diam)})
+                     "verdict": _verdict(rate == "31.3", stable, rate, ring_diam, tuple(outcomes))})
     sleeping = threshold("hurricane", "sleeping").value
     for fig, phid, psid, says in (("Fig. 18", "0.98", "0.98", "oscillates"), ("Fig. 18", "0.97", "0.97", "spirals out"),
                                   ("Fig. 19", "0", "1.95", "oscillates"), ("Fig. 19", "0", "1.9", "spirals out")):
         w3 = (mpmath.mpf(phid) + mpmath.mpf(psid)) * root_g
         stable = w3 > sleeping
-        runs = []
+        runs, outcomes = [], []
         for th0 in ("1e-2", "1e-4"):
             sol = solve("hurricane", "10", {"theta": th0, "phidot": mpmath.nstr(mpmath.mpf(phid) * root_g, 20),
                                             "psidot": mpmath.nstr(mpmath.mpf(psid) * root_g, 20)}, n_eval=801)
+            outcomes.append(sol.outcome)
             lin = linear_deviation("hurricane", "sleeping", w3, th0, phidot0=mpmath.mpf(phid) * root_g)
             runs.append(f"theta0 {th0}: {sol.outcome}, max theta {float(max(sol['theta'])):.3g} (linear {min(lin, 99):.3g})")
         rows.append({"figure": fig, "case": f"phidot0 = {phid}, psidot0 = {psid} sqrt(g/a): omega3 = "
                                             f"{_nstr(w3 / root_g, 5)} sqrt(g/a)", "caption": says,
                      "exact": f"sleeping threshold {_nstr(sleeping / root_g, 8)} sqrt(g/a): linearly "
                               f"{'stable' if stable else 'unstable'}; " + "; ".join(runs),
-                     "verdict": _verdict(says == "oscillates", stable, w3, sleeping)})
+                     "verdict": _verdict(says == "oscillates", stable, w3, sleeping, tuple(outcomes))})
     return rows
 
 

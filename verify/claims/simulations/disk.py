@@ -7,7 +7,7 @@ from functools import lru_cache
 import mpmath
 import numpy as np
 
-from verify.behaviour import both_sides
+from verify.behaviour import both_sides, side_fractions
 from verify.circling import circling
 
 from ..base import FigureData, RunData, decide, undecided
@@ -35,20 +35,58 @@ def _check_fig2():
                   figures=(FigureData("fig-02", "Fig. 2: steady circle (Eq. 21)", (data,)),), measures=measures)
 
 
+#: phidot0 scanned at alpha0 = 0.1 (s^-1; phidot0 is not stated): both signs, up to ~3 times 2 psidot0 alpha0 (3.62)
+FIG3_SCAN = (-10.0, -5.0, -2.0, 0.0, 1.0, 2.0, 3.0, 3.7, 4.0, 5.0, 10.0)
+
+
+def _crosses(a0, phd, rate) -> bool:
+    """theta goes below pi/2 within 10 s from pi/2 + a0 (2001 outputs: 5 ms, ~1/20 of the nutation)."""
+    sol = run("disk", {"theta": math.pi / 2 + a0, "psidot": rate, "phidot": phd}, 10, "bisection", n_eval=2001)[1]
+    return min(sol.theta) < math.pi / 2
+
+
 @lru_cache(maxsize=None)
 def _fig3_runs():
     crit = math.sqrt(G / (2 * (2 * K + 1)))
     th0 = math.pi / 2 + 0.1
     rate = 1.001 * crit
-    out = {"crit": crit}
+    member = 2 * rate * 0.1  # the phidot0 of the family Eq. 30 assumes, (2k+1) psidot = 2(k+1) phidot alpha at k = 1/4
+    out = {"crit": crit, "rate": rate, "member": member}
     out["lhs0"] = run("disk", {"theta": th0, "psidot": rate}, 10, "1.001 x Eq. 32, alpha0 = 0.1, phidot0 = 0")[1]
-    out["lhs1"] = run("disk", {"theta": th0, "psidot": rate, "phidot": 2 * rate * 0.1}, 10,
+    out["lhs1"] = run("disk", {"theta": th0, "psidot": rate, "phidot": member}, 10,
                       "1.001 x Eq. 32, alpha0 = 0.1, phidot0 = 2 psidot0 alpha0")[1]
     out["small"] = run("disk", {"theta": math.pi / 2 + 0.001, "psidot": rate, "phidot": 2 * rate * 0.001}, 10,
                        "control: alpha0 = 0.001")[1]
+    out["small0"] = run("disk", {"theta": math.pi / 2 + 0.001, "psidot": rate}, 10, "alpha0 = 0.001, phidot0 = 0")[1]
+    out["scan"] = {phd: run("disk", {"theta": th0, "psidot": rate, "phidot": phd}, 10, f"alpha0 = 0.1, phidot0 = {phd:g}")[1]
+                   for phd in FIG3_SCAN}
+    out["switch"] = _bisect_phidot(lambda phd: _crosses(0.1, phd, rate), member, 4.0)
     out["rhs"] = run("disk", {"theta": th0, "psidot": 0.9 * crit}, 10, "0.9 x Eq. 32, phidot0 = 0")[1]
     out["mirror"] = run("disk", {"theta": th0, "psidot": -0.9 * crit}, 10, "control: mirrored (psidot0 < 0)")[1]
     return out
+
+
+def _bisect_phidot(crosses, lo: float, hi: float, halvings: int = 8) -> tuple:
+    """[lo, hi] of the smallest phidot0 from which theta crosses pi/2 (lo stays above, hi crosses)."""
+    if crosses(lo) or not crosses(hi):
+        return (math.nan, math.nan)
+    for _ in range(halvings):
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if crosses(mid) else (mid, hi)
+    return lo, hi
+
+
+def _wobble(d: RunData):
+    """(both-sides reading, fraction of the time below pi/2, deepest theta below pi/2, largest |phi|) of a run."""
+    t, th, *_ = _arrays(d)
+    lo, _ = side_fractions(t, th, math.pi / 2)
+    return both_sides(t, th, math.pi / 2, f"{d.label}: wobbles above and below pi/2"), lo, \
+        float(math.pi / 2 - th.min()), float(np.max(np.abs(d.phi)))
+
+
+def _span(values, fmt=".0f") -> str:
+    lo, hi = min(values), max(values)
+    return f"{lo:{fmt}}" if f"{lo:{fmt}}" == f"{hi:{fmt}}" else f"{lo:{fmt}}-{hi:{fmt}}"
 
 
 def _check_fig3_lhs():
@@ -57,21 +95,45 @@ def _check_fig3_lhs():
     for key in ("lhs0", "lhs1"):
         t, th, *_ = _arrays(r[key])
         reads.append(both_sides(t, th, math.pi / 2, f"{r[key].label}: wobbles above and below pi/2"))
-    t, th, *_ = _arrays(r["small"])
-    control = both_sides(t, th, math.pi / 2, "control alpha0 = 0.001: both sides")
+    small, below_s, _, phi_s = _wobble(r["small"])
+    small0, _, _, phi_s0 = _wobble(r["small0"])
+    control = both_sides(np.array(r["small"].t), np.array(r["small"].theta), math.pi / 2,
+                         "control alpha0 = 0.001: both sides")
     phi_spread = max(max(np.abs(r[k].phi)) for k in ("lhs0", "lhs1"))
+    scan = {phd: _wobble(d) for phd, d in r["scan"].items()}
+    stay = [phd for phd, w in scan.items() if w[0].holds is False]
+    cross = [phd for phd, w in scan.items() if w[0].holds is True]
+    lo, hi = r["switch"]
+    member = r["member"]
+    scan_text = "; ".join(f"{phd:+g}: {'crosses' if w[0].holds else 'above' if w[0].holds is False else 'undecided'}, "
+                          f"max phi {w[3]:.1f}" for phd, w in scan.items())
     detail = ("10 s (not stated); phidot0 not stated: 0, and 2 psidot0 alpha0 (the member of the family Eq. 30 "
               f"assumes). Near the threshold the linear restoring term is 0.002 g alpha, far below the nonlinear terms at "
               f"alpha = 0.1, so the disk oscillates on one side of pi/2 and turns: phi reaches {phi_spread:.0f} rad "
-              f"('phi is generally small' fails too). Negative control, same rate from alpha0 = 0.001: {control.text()}")
+              f"('phi is generally small' fails too). Negative control, same rate from alpha0 = 0.001: {control.text()}. "
+              f"Scan of phidot0 at alpha0 = 0.1 (s^-1: theta, largest phi in rad): {scan_text}; theta first crosses "
+              f"pi/2 between phidot0 = {lo:.3f} and {hi:.3f} (bisection)")
     if control.holds is not True:
         return undecided("the measures cannot see a wobble about pi/2 even where the linear theory has one",
                          "wobbles above and below pi/2", detail, measures=control.measures())
+    if cross:
+        crossing = (f"from phidot0 = {hi:.3f} s^-1 ({hi / member:.3f} x 2 psidot0 alpha0) up it crosses pi/2, but as a "
+                    f"deep swing: theta reaches pi/2 - {_span([scan[p][2] for p in cross], '.2f')}, "
+                    f"{_span([scan[p][1] for p in cross], '.0%')} of the time below, and phi turns by "
+                    f"{_span([scan[p][3] for p in cross])} rad in 10 s (phidot0 = {', '.join(f'{p:g}' for p in cross)})")
+    else:
+        crossing = "no phidot0 of the scan crosses pi/2"
+    correction = (rf"with $\alpha_0 = 0.1$ the disk does not wobble about $\pi/2$ with $\phi$ small for any "
+                  rf"$\dot{{\phi}}_0$ scanned ({min(FIG3_SCAN):g} to {max(FIG3_SCAN):g} s^-1): $\theta$ stays above $\pi/2$ for "
+                  rf"$\dot{{\phi}}_0$ up to {lo:.3f} s^-1 ({', '.join(f'{p:g}' for p in stay)} scanned, 0 and $2 \dot{{\psi}}_0 "
+                  rf"\alpha_0 = {member:.2f}$ among them) while $\phi$ grows by "
+                  f"{_span([scan[p][3] for p in stay] + [float(np.max(np.abs(r['lhs1'].phi)))])} rad in 10 s; {crossing}. The caption's wobble, with $\\phi$ small, is the "
+                  rf"linear family member $\dot{{\phi}}_0 = 2 \dot{{\psi}}_0 \alpha_0$ with a small deviation: "
+                  rf"$\alpha_0 = 0.001$ there wobbles ({small.first[1]} sign changes, {below_s:.0%} of the time below, "
+                  rf"$\phi$ within {phi_s:.2f} rad), while $\alpha_0 = 0.001$ with $\dot{{\phi}}_0 = 0$ does not "
+                  rf"({small0.first[1]} sign changes; $\phi$ grows by {phi_s0:.0f} rad)")
     ev = _verdict(reads, (True, True), "", "the disk wobbles above and below theta = pi/2 (alpha = .1, 0.1% above Eq. 32)",
-                  detail, correction=r"with $\alpha_0 = 0.1$ the disk does not wobble about $\pi/2$ (for $\dot{\phi}_0 = 0$ "
-                                     r"or $2 \dot{\psi}_0 \alpha_0$): $\theta$ stays above $\pi/2$ and $\phi$ grows by "
-                                     r"50-110 rad in 10 s; the described wobble needs a small deviation ($\alpha_0 = 0.001$ "
-                                     "does it)",
+                  detail, correction=correction,
                   figures=(FigureData("fig-03", "Fig. 3: straight-line rolling near the Eq. 32 threshold",
                                       (r["lhs0"], r["lhs1"], r["rhs"])),))
     return ev

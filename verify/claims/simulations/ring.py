@@ -10,7 +10,8 @@ from verify.behaviour import leaves, one_side, oscillates
 from verify.engine.single import solve
 
 from ..base import FigureData, RunData, decide, qualify, undecided
-from .runs import G, RING_PRINTED, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _sense, _verdict, run
+from .runs import (G, PRINTED_SET, RING_PRINTED, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _sense, _verdict,
+                   finite_offset, run)
 
 
 def _ring_params() -> dict:
@@ -70,7 +71,7 @@ def _fig9_check(side: str, want: int):
                         for rate in (-10.0, -20.0, -40.0))
         said = "clockwise" if want < 0 else "counter-clockwise"
         detail = ("theta0 = 0.1; which circle and which handedness are not stated: the circle with the CM at rest "
-                  "(text after Eq. 58) with phidot0 > 0, |psidot0| changed by 1%; 10 s; the paper's printed ring. The "
+                  f"(text after Eq. 58) with phidot0 > 0, |psidot0| changed by 1%; 10 s; {PRINTED_SET}. The "
                   "slow path is the CM with the nutation filtered out (the loops' own sense is not what the caption "
                   f"describes). The other panel's start: {other.word()}. Negative control, the mirror image "
                   f"(phidot0 < 0, the handedness of the paper's Fig. 8, psidot > 0): {mirror.strobe.text()}; "
@@ -112,8 +113,27 @@ def _fig10_runs():
                                        n_eval=10001)[1]
     out["free"] = _ring_run({"theta": eq + 2e-4, "psidot": 18.8}, 5, "psidot0 = 18.8, no events", n_eval=10001,
                             events=False)[1]
+    # negative control of the path's deviation: the same rate from the equilibrium itself rolls straight
+    out["straight"] = _ring_run({"theta": eq, "psidot": 19.3}, 5, "psidot0 = 19.3, Delta theta = 0", n_eval=10001)[1]
     out["delta*"] = _bisect(lambda d: _leaves_quietly("ring", {"theta": eq + d, "psidot": 18.8}, 5, RING_PRINTED), 0.0, 2e-4)
     return out
+
+
+def path_deviation(d: RunData) -> tuple:
+    """(distance along the starting line, largest distance from it, turn of the heading) of the CM path.
+
+    The starting line is the CM's first direction of motion (from the first two output points);
+    the heading's turn is read off the path itself (the direction of its last step against its
+    first), a route apart from the Euler angle phi the run also carries."""
+    x, y = np.array(d.x), np.array(d.y)
+    ux, uy = x[1] - x[0], y[1] - y[0]
+    norm = math.hypot(ux, uy)
+    ux, uy = ux / norm, uy / norm
+    along = (x - x[0]) * ux + (y - y[0]) * uy
+    across = -(x - x[0]) * uy + (y - y[0]) * ux
+    vx, vy = x[-1] - x[-2], y[-1] - y[-2]
+    turn = math.atan2(ux * vy - uy * vx, ux * vx + uy * vy)
+    return float(along[-1]), float(np.max(np.abs(across))), turn
 
 
 def _check_fig10_lhs():
@@ -124,35 +144,49 @@ def _check_fig10_lhs():
         reads.append(one_side(t, th, r["eq"], f"Delta theta = {d:+g}: one side of equilibrium"))
         reads.append(oscillates(t, th, _completed(r[(d, 19.3)]), f"Delta theta = {d:+g}: theta oscillates"))
     lhs = r[(2e-4, 19.3)]
-    lateral = float(np.max(np.abs(np.array(lhs.x))))  # the ring rolls along y (e1 at phi = 0 is x: across the path)
-    detail = (f"theta0 = cot^-1 h +- 0.0002 (the caption's sign is not stated: both), phidot0 = 0; 5 s; the paper's printed "
-              f"ring. The path's sideways deviation reaches {lateral:.3g} R. 19.3 is above the linear threshold "
+    along, across, turn = path_deviation(lhs)
+    along0, across0, turn0 = path_deviation(r["straight"])
+    detail = (f"theta0 = cot^-1 h +- 0.0002 (the caption's sign is not stated: both), phidot0 = 0; 5 s; {PRINTED_SET}. "
+              f"The path deviates from a straight line ('as a result the path slowly deviates'): in 5 s the CM goes "
+              f"{along:.3g} R along its starting line and {across:.3g} R to the side of it, its heading turned by "
+              f"{turn:+.3f} rad (phi {lhs.phi[-1]:+.3f} rad); from Delta theta = 0 the same rate rolls straight "
+              f"({across0:.1e} R to the side, heading {turn0:+.1e} rad). 19.3 is above the linear threshold "
               f"{r['threshold']:.4f}")
     return _verdict(reads, (True,) * 4, "", "theta oscillates on one side of equilibrium", detail,
                     figures=(FigureData("fig-10", "Fig. 10: ring rolling straight with its CM above the contact",
                                         (lhs, r[(2e-4, 18.8)])),))
 
 
-def _check_fig10_rhs():
+def _fig10_rhs_rule():
+    """The runs of Fig. 10 RHS under the one finite-offset rule: (readings, linearly stable, start offset,
+    bracket) from the caption's start, and the same for the negative control (Delta theta = -0.0002)."""
     r = _fig10_runs()
-    run_ = r[(2e-4, 18.8)]
-    free = r["free"]
+    run_, free, below = r[(2e-4, 18.8)], r["free"], r[(-2e-4, 18.8)]
     read = leaves(run_.outcome, "rim_switch", run_.t[-1], free.t, free.theta, math.pi / 2,
                   name="Delta theta = +0.0002: theta exceeds pi/2")
-    below = r[(-2e-4, 18.8)]
-    lo, hi = r["delta*"]
+    control = leaves(below.outcome, "rim_switch", below.t[-1], below.t, below.theta, math.pi / 2,
+                     name="Delta theta = -0.0002: theta exceeds pi/2")
+    stable = 18.8 > r["threshold"]
+    return (([read], stable, 2e-4, r["delta*"]), ([control], stable, -2e-4, r["delta*"]))
+
+
+def _check_fig10_rhs():
+    r = _fig10_runs()
+    (reads, stable, offset, bracket), _ = _fig10_rhs_rule()
+    lo, hi = bracket
     thr = r["threshold"]
-    detail = (f"theta0 = cot^-1 h + 0.0002, phidot0 = 0; 5 s; the paper's printed ring. From Delta theta = -0.0002 the "
+    below = r[(-2e-4, 18.8)]
+    detail = (f"theta0 = cot^-1 h + 0.0002, phidot0 = 0; 5 s; {PRINTED_SET}. From Delta theta = -0.0002 the "
               f"ring stays ({below.outcome}, theta on one side)")
-    if read.holds is None or not read.holds:
-        return _verdict([read], (True,), "", "theta quickly exceeds pi/2", detail)
-    if 18.8 > thr:
-        return qualify(read.text(), "psidot0 = 18.8: theta quickly exceeds the limit of pi/2 (unstable, unlike 19.3)", detail,
-                       f"the exact linear threshold of this straight-line motion is psidot0 = {thr:.6f} s^-1 (closed form, "
-                       f"derived equations), so 18.8 is linearly stable; the ring leaves within 5 s only from a finite "
-                       f"offset Delta theta > {hi:.3g} rad above cot^-1 h (bisection: stays at {lo:.3g}); the caption's "
-                       f"+0.0002 is {2e-4 / hi:.1f} times that", measures=read.measures())
-    return decide(True, read.text(), "theta quickly exceeds pi/2", detail, measures=read.measures())
+    expected = "psidot0 = 18.8: theta quickly exceeds the limit of pi/2 (unstable, unlike 19.3)"
+    ev = finite_offset(reads, stable, offset, bracket, expected, detail,
+                       qualification=f"the exact linear threshold of this straight-line motion is psidot0 = {thr:.6f} "
+                                     f"s^-1 (closed form, derived equations), so 18.8 is linearly stable; the ring leaves "
+                                     f"within 5 s only from a finite offset Delta theta > {hi:.3g} rad above cot^-1 h "
+                                     f"(bisection: stays at {lo:.3g}); the caption's +0.0002 is {offset / hi:.1f} times that",
+                       correction=f"from the caption's start the ring stays: 18.8 is above the linear threshold "
+                                  f"{thr:.6f}, and it leaves only from offsets above {hi:.3g} rad")
+    return ev if ev is not None else _verdict(reads, (True,), "", "theta quickly exceeds pi/2", detail)
 
 
 @lru_cache(maxsize=None)
@@ -161,12 +195,15 @@ def _fig11_runs():
     from verify.studies.thresholds import threshold
 
     root = float(steady_state("ring", "diameter-spin", "25.7", RING_PRINTED)["theta"])
-    out = {"root": root, "threshold": float(threshold("ring", "diameter-spin", RING_PRINTED).value)}
+    near = 1.225 - _fig11_lhs_root()  # the LHS's start above its equilibrium: the caption's 'near'
+    out = {"root": root, "near": near, "threshold": float(threshold("ring", "diameter-spin", RING_PRINTED).value)}
     out["lhs"] = _ring_run({"theta": 1.225, "phidot": SQRT_G}, 20, "phidot0 = sqrt(g/R), theta0 = 1.225")[1]
+    out["start"] = _ring_run({"theta": root + near, "phidot": 25.7}, 20,
+                             f"phidot0 = 25.7, theta0 = equilibrium {near:+.4f} (the LHS's offset)")[1]
+    out["start free"] = _ring_run({"theta": root + near, "phidot": 25.7}, 20, "the same, no events", events=False)[1]
     out["printed"] = _ring_run({"theta": 1.205, "phidot": 25.7}, 20, "phidot0 = 25.7, theta0 = 1.205 (printed)")[1]
     out["free"] = _ring_run({"theta": 1.205, "phidot": 25.7}, 20, "phidot0 = 25.7, theta0 = 1.205, no events",
                             events=False)[1]
-    out["up"] = _ring_run({"theta": root + 1e-4, "phidot": 25.7}, 20, "phidot0 = 25.7, theta0 = root + 1e-4")[1]
     out["delta*"] = _bisect(lambda d: _leaves_quietly("ring", {"theta": root + d, "phidot": 25.7}, 20, RING_PRINTED),
                             0.0, 1e-3)
     return out
@@ -178,8 +215,9 @@ def _check_fig11_lhs():
     read = oscillates(t, th, _completed(r["lhs"]))
     return _verdict([read], (True,), "", "theta oscillates",
                     r"$\dot{\phi}_0 = \sqrt{g/R}$, $\theta_0 = 1.225$, $\dot{\psi}_0 = 0$; 20 s; "
-                    f"the paper's printed ring (the steady angle at this rate is {float(_fig11_lhs_root()):.4f})",
-                    figures=(FigureData("fig-11", "Fig. 11: ring 'diameter spin'", (r["lhs"], r["printed"], r["up"])),))
+                    f"{PRINTED_SET} (the steady angle at this rate is {float(_fig11_lhs_root()):.4f})",
+                    figures=(FigureData("fig-11", "Fig. 11: ring 'diameter spin'",
+                                        (r["lhs"], r["start"], r["printed"])),))
 
 
 def _fig11_lhs_root():
@@ -188,22 +226,41 @@ def _fig11_lhs_root():
     return float(steady_state("ring", "diameter-spin", repr(SQRT_G), RING_PRINTED)["theta"])
 
 
+def _fig11_rhs_rule():
+    """The runs of Fig. 11 RHS under the one finite-offset rule: the caption's start (the equilibrium
+    plus the LHS's offset) and the negative control (the printed 1.205 taken as the start itself)."""
+    r = _fig11_runs()
+    s, sf, p, pf = r["start"], r["start free"], r["printed"], r["free"]
+    read = leaves(s.outcome, "rim_switch", s.t[-1], sf.t, sf.theta, math.pi / 2,
+                  name=f"from the equilibrium {r['near']:+.4f}: theta exceeds pi/2")
+    control = leaves(p.outcome, "rim_switch", p.t[-1], pf.t, pf.theta, math.pi / 2,
+                     name="from 1.205 itself: theta exceeds pi/2")
+    stable = 25.7 > r["threshold"]
+    return (([read], stable, r["near"], r["delta*"]), ([control], stable, 1.205 - r["root"], r["delta*"]))
+
+
 def _check_fig11_rhs():
     r = _fig11_runs()
-    p, free = r["printed"], r["free"]
-    read = leaves(p.outcome, "rim_switch", p.t[-1], free.t, free.theta, math.pi / 2,
-                  name="from the printed theta0 = 1.205: theta exceeds pi/2")
-    lo, hi = r["delta*"]
-    detail = (f"psidot0 = 0, phidot0 = 25.7, theta0 = 1.205 as printed; 20 s; the paper's printed ring. The equilibrium at "
-              f"25.7 is {r['root']:.6f}, and the printed 1.205 lies {1.205 - r['root']:+.2e} from it (below); from "
-              f"1e-4 above it the ring leaves at t = {r['up'].t[-1]:.2f} s ({r['up'].outcome})")
-    return _verdict([read], (True,), "", "theta quickly exceeds the limit of pi/2", detail,
-                    correction=f"from the printed start the ring stays on its rim for 20 s: 25.7 is above the linear "
-                               f"threshold $\\dot{{\\phi}}_0 = {r['threshold']:.6f}$ (the equilibrium is linearly stable), and the "
-                               f"ring leaves within 20 s only from starts more than {hi:.3g} rad above the equilibrium "
-                               f"(bisection: stays at {lo:.3g}); of the starts that print as 1.205, only those in "
-                               f"[{r['root'] + hi:.6f}, 1.2055) -- {(1.2055 - r['root'] - hi) / 1e-3:.0%} of them -- "
-                               "would show the figure")
+    (reads, stable, offset, bracket), ((control,), *_) = _fig11_rhs_rule()
+    lo, hi = bracket
+    thr, root, p = r["threshold"], r["root"], r["printed"]
+    detail = (f"psidot0 = 0, phidot0 = 25.7; 20 s; {PRINTED_SET}. The equilibrium at 25.7 is {root:.6f}, which the "
+              f"printed theta_0 = 1.205 names (Fig. 11 RHS (angle)); the caption starts the ring 'near' it and does not "
+              f"say how near: read as the LHS's own offset, 1.225 - {_fig11_lhs_root():.6f} = {offset:+.4f}, so theta0 = "
+              f"{root + offset:.6f}; the ring leaves at t = {r['start'].t[-1]:.3f} s ({r['start'].outcome}). Taken as "
+              f"the start itself, 1.205 lies {1.205 - root:+.2e} from the equilibrium and the ring stays 20 s "
+              f"({p.outcome}, theta from {min(p.theta):.4f} to {max(p.theta):.4f}): {control.text()}")
+    ev = finite_offset(reads, stable, offset, bracket,
+                       "phidot0 = 25.7: theta quickly exceeds the limit of pi/2 (unstable, unlike 31.3)", detail,
+                       qualification=f"the exact linear threshold of this diameter spin is $\\dot{{\\phi}}_0 = {thr:.6f}$ "
+                                     f"(derived equations, along the Eq. 62 branch), so 25.7 is linearly stable; the ring "
+                                     f"leaves within 20 s only from a finite offset above the equilibrium {root:.6f}, more "
+                                     f"than {hi:.3g} rad (bisection: stays at {lo:.3g}); the start read, the LHS's "
+                                     f"{offset:+.4f}, is {offset / hi:.0f} times that, while from the printed 1.205 taken "
+                                     f"as the start ({1.205 - root:+.2e}) the ring stays",
+                       correction=f"from the caption's start the ring stays on its rim for 20 s: 25.7 is above the "
+                                  f"linear threshold {thr:.6f}, and it leaves only from offsets above {hi:.3g} rad")
+    return ev if ev is not None else _verdict(reads, (True,), "", "theta quickly exceeds the limit of pi/2", detail)
 
 
 def _point_a(data, h):
@@ -242,7 +299,7 @@ def _check_fig12():
                       f"contact enforced the run stops at t = {float(first.t[-1]) * 1e3:.2f} ms ({first.outcome}); the ring "
                       "would leave the plane, and the rolling solution beyond that is not physical",
                   "the CM may move rather differently from A; dimensionless time sets g = 1",
-                  "3 s (not stated); the paper's printed ring; the caption's 'may' is read as: the two paths differ visibly "
+                  f"3 s (not stated); {PRINTED_SET}; the caption's 'may' is read as: the two paths differ visibly "
                   "(by more than 1% of the path's extent, and in length by more than 1%)",
                   figures=(FigureData("fig-12", "Fig. 12: Jalali et al.'s start (contact not enforced: N < 0 from 5 ms); "
                                       "CM (left) and point A (right)", (cm, a_run)),), measures=measures)

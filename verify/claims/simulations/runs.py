@@ -13,7 +13,9 @@ from models.ring import parameter_set
 from verify.circling import circling
 from verify.engine.single import solve
 
-from ..base import Evaluation, RunData, decide, undecided
+from verify.studies.finite_offset import finite_offset_verdict
+
+from ..base import ERRATUM, QUALIFIED, Evaluation, RunData, decide, qualify, undecided
 
 G = float(PAPER_G)
 SQRT_G = math.sqrt(G)
@@ -21,6 +23,8 @@ K = 0.25
 DENSE = 20001  # output points of a run read by the measures: >= 40 a nutation on every run here
 # the paper's printed ring (text before Fig. 9): the figure runs use the paper's own numbers
 RING_PRINTED = dict(parameter_set("printed"))
+#: How every text names the ring's parameter set (the annular one: verify.claims.ring.RING).
+PRINTED_SET = "the printed ring set (I1 = 0.4993, I3 = 0.8727, h = 0.4344, text before Fig. 9)"
 
 
 @lru_cache(maxsize=None)
@@ -87,3 +91,31 @@ def circle_centre(x, y):
 def _sense(d: RunData):
     t, th, x, y, _, _ = _arrays(d)
     return circling(t, x, y, th, whole_path=True)
+
+
+def all_hold(readings) -> "bool | None":
+    """True when every reading holds, False when none does, None when one is undecided or they differ."""
+    held = [r.holds for r in readings]
+    if any(h is None for h in held) or len(set(held)) != 1:
+        return None
+    return held[0]
+
+
+def finite_offset(readings, linearly_stable: bool, start_offset: float, bracket: tuple, expected: str, detail: str,
+                  qualification: str, correction: str, figures=()):
+    """The rule of :mod:`verify.studies.finite_offset` as an evaluation, or None when the rate is linearly
+    unstable (not this situation: the caller decides by the run).  ``readings`` are those of the run
+    from the caption's start (all of them must hold for 'leaves'); ``qualification`` is given when it
+    leaves, ``correction`` when it stays."""
+    verdict = finite_offset_verdict(linearly_stable, all_hold(readings), start_offset, bracket)
+    if verdict is None:
+        return None
+    measures = tuple(m for r in readings for m in r.measures())
+    said = "; ".join(r.text() for r in readings)
+    if verdict == QUALIFIED:
+        return qualify(said, expected, detail, qualification, figures=figures, measures=measures)
+    if verdict == ERRATUM:
+        return decide(False, said, expected, detail, correction=correction, figures=figures, measures=measures)
+    lo, hi = bracket
+    return undecided(said, expected, detail + f" The run from the start (offset {start_offset:.3g}) and the bisection "
+                     f"(stays at {lo:.3g}, leaves at {hi:.3g}) disagree, or the run's measures do", figures, measures)
