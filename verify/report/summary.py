@@ -56,19 +56,25 @@ def build(claims: list, studies: dict) -> dict:
                    "fig5": [verdict.get("fig-5-lhs"), verdict.get("fig-5-rhs")]},
         "divergence": {"eq45_cm_at_rest_max_rel_error": f"{eq45_exact:.1e}", "eq45_zero_vertical_spin": eq45_other,
                        "eq61": eq61, "eq45": verdict.get("eq-45"), "eq61_verdict": verdict.get("eq-61"),
-                       "eq61_parameter_set": eq61_set, "eq61_annular": eq61_annular},
+                       "eq61_parameter_set": eq61_set, "eq61_annular": eq61_annular,
+                       "eq61_parameter_values": _ring_set_values(eq61_set)},
         "errata": errata, "qualified": qualified, "undecided": undecided,
     }
 
 
-#: How the summary names a ring parameter set (the rows say which one they are for).
-RING_SET_WORDS = {"printed": "for the printed ring set (I1 = 0.4993, I3 = 0.8727, h = 0.4344)",
-                  "annular": "for the annular ring set (the model's defaults)"}
+def _ring_set_values(name):
+    """The printed set's own numbers (decimal strings), so that the summary shows them from the data."""
+    from models import ring
+
+    return dict(ring.PRINTED) if name == "printed" else None
 
 
 def _ring_set_words(d: dict) -> str:
-    name = d.get("eq61_parameter_set")
-    return f"{RING_SET_WORDS[name]}, " if name in RING_SET_WORDS else ""
+    """How the summary names the ring parameter set the Eq. 61 limits are for (from the data)."""
+    name, values = d.get("eq61_parameter_set"), d.get("eq61_parameter_values")
+    if name == "printed" and values:
+        return f"for the printed ring set ({', '.join(f'{k} = {v}' for k, v in values.items())}), "
+    return "for the annular ring set (the model's defaults), " if name == "annular" else ""
 
 
 def _annular(d: dict, family: str) -> str:

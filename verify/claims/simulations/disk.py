@@ -86,7 +86,7 @@ def _wobble(d: RunData):
 
 def _span(values, fmt=".0f") -> str:
     lo, hi = min(values), max(values)
-    return f"{lo:{fmt}}" if f"{lo:{fmt}}" == f"{hi:{fmt}}" else f"{lo:{fmt}}-{hi:{fmt}}"
+    return f"{lo:{fmt}}" if f"{lo:{fmt}}" == f"{hi:{fmt}}" else f"{lo:{fmt}} to {hi:{fmt}}"  # "a-b" reads as a minus
 
 
 def _check_fig3_lhs():
