@@ -214,7 +214,6 @@ def test_closed_stdout_and_stderr_are_no_traceback():
 
 # --- Ctrl-C --------------------------------------------------------------------------------------
 
-@pytest.mark.slow  # failed in a fresh clone under load (the same interrupt-handling defect as below): make test-all
 def test_ctrl_c_during_a_long_run_exits_130_with_one_line():
     p = subprocess.Popen([sys.executable, "-m", "verify", "trajectory", "disk", "--state", "theta=1.2", "--state",
                           "psidot=10", "--t-end", "1e6"],
@@ -232,12 +231,11 @@ def test_ctrl_c_during_a_long_run_exits_130_with_one_line():
     assert lines == ["error: interrupted (Ctrl-C)"], err
 
 
-@pytest.mark.slow  # known defect: the watchdog is a Python thread, so it needs the GIL; when heyoka's JIT
-# holds it (seen under load in a fresh clone) Ctrl-C waits for the compile. Run by make test-all, not make test.
 def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
     """At mp:100000 heyoka's JIT runs for many minutes inside one C++ call, where Python cannot act
-    on Ctrl-C; the CLI's watchdog does, after INTERRUPT_GRACE seconds, with the same one line (and
-    under --format json the error document)."""
+    on Ctrl-C; the CLI's supervisor process (the one the test started; it needs no GIL but its own)
+    does, after INTERRUPT_GRACE seconds, with the same one line (and under --format json the error
+    document)."""
     p = subprocess.Popen([sys.executable, "-m", "verify", "trajectory", "disk", "--state", "theta=1.2", "--t-end", "1",
                           "--precision", "mp:100000", "--format", "json", "--progress"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=ENV, cwd=ROOT)
@@ -245,8 +243,8 @@ def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
         first = p.stderr.readline()  # progress while compiling: "setting up (compiling the equations)"
         assert first.startswith("trajectory disk: setting up"), first
         p.send_signal(signal.SIGINT)
-        # the compile at mp:100000 lasts many minutes, so an exit within 300 s (the watchdog acts after
-        # INTERRUPT_GRACE = 2 s) can only be the watchdog's, however loaded the machine
+        # the compile at mp:100000 lasts many minutes, so an exit within 300 s (the supervisor acts after
+        # INTERRUPT_GRACE = 2 s) can only be the supervisor's, however loaded the machine
         out, err = p.communicate(timeout=300)
     finally:
         if p.poll() is None:
