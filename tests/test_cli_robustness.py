@@ -254,6 +254,54 @@ def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
     assert [ln for ln in err.splitlines() if not ln.startswith("trajectory disk:")] == ["error: interrupted (Ctrl-C)"]
 
 
+_HOLD_THE_GIL = """
+import ctypes, sys
+from verify.guard import supervise
+
+argv = sys.argv[1:]
+supervise(argv)  # as python -m verify does; what follows runs in the supervised child
+from verify import cli, sweep
+
+def hold_the_gil(*args, **kwargs):
+    print("holding the GIL", file=sys.stderr, flush=True)
+    libc = ctypes.PyDLL(None)  # PyDLL: the call keeps the GIL, as heyoka's JIT may
+    mutex = ctypes.create_string_buffer(64)  # zeros: an unlocked glibc mutex
+    libc.pthread_mutex_lock(mutex)
+    libc.pthread_mutex_lock(mutex)  # locked twice by one thread: waits forever, and signals do not end the wait
+
+cli.commands.solve = sweep.run_sweep = hold_the_gil
+sys.exit(cli.main(argv))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="a glibc mutex holds the GIL forever")
+@pytest.mark.parametrize("command", ["trajectory", "sweep"])
+def test_ctrl_c_while_a_c_call_holds_the_gil_forever_exits_130(command, tmp_path):
+    """The defect behind the supervisor, made certain: a C call that holds the GIL and never returns
+    (no thread of that process can act), interrupted.  The supervisor ends it with the one line it
+    would have said, a sweep's resume note included, and under --format json the error document."""
+    spec = os.path.join(ROOT, "verify", "sweep", "specs", "disk-diameter-spin.toml")
+    argv = {"trajectory": ["trajectory", "disk", "--state", "theta=1", "--t-end", "1", "--format", "json"],
+            "sweep": ["sweep", spec, "--store", str(tmp_path / "s.sqlite"), "--quiet", "--yes"]}[command]
+    p = subprocess.Popen([sys.executable, "-c", _HOLD_THE_GIL, *argv], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, env=ENV, cwd=ROOT)
+    try:
+        first = p.stderr.readline()
+        assert first == "holding the GIL\n", first + p.stderr.read()
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=300)  # the call never returns: only the supervisor can end this
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == 130
+    line = one_error_line(err)
+    if command == "trajectory":
+        assert line == "error: interrupted (Ctrl-C)"
+        assert json.loads(out) == {"error": "interrupted (Ctrl-C)", "exit_status": 130}
+    else:
+        assert out == "" and str(tmp_path / "s.sqlite") in line and "rerun the same command to resume" in line
+
+
 def test_ctrl_c_in_process(capsys, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
