@@ -84,25 +84,32 @@ class Guard:
     """The computation's surroundings: stdout kept clean while the command computes.
 
     While the command computes, file descriptor 1 points at 2 and sys.stdout is sys.stderr: what
-    heyoka, LLVM or any library prints cannot corrupt the result, written after.  On the way out
-    it tells the supervisor (if any) that the command is back in Python and about to write: from
-    then on an interrupt is the command's own to report, and the supervisor does not end it.
+    heyoka, LLVM or any library prints cannot corrupt the result, written after.  It tells the
+    supervisor (if any) when the computation starts and ends: only in between may the supervisor
+    end the command on Ctrl-C (before and after, the command is in Python, and says it itself).
     """
 
     def __init__(self, session: Session, err):
         self.session, self.err = session, err
         self.saved = None  # the real stdout, while fd 1 points at stderr
+        self.redirected = False
 
     def __enter__(self):
-        self._redirect()
+        try:
+            _report("computing")
+            self._redirect()
+        except BaseException:  # Ctrl-C on the way in: the way out all the same (no __exit__ follows)
+            self.__exit__()
+            raise
         return self
 
     def __exit__(self, *exc):
-        _report("back")
+        _report("back")  # before anything is written: the result, or the error line
         self._restore()
         return False
 
     def _redirect(self) -> None:
+        self.old_stdout = sys.stdout
         try:
             sys.stdout.flush()
         except (AttributeError, OSError, ValueError):
@@ -112,6 +119,7 @@ class Guard:
             self.saved = os.dup(1)
         except OSError:  # fd 1 closed (>&-): nothing to protect; keep it occupied while we compute
             self.saved = None
+        self.redirected = True  # from here, _restore puts fd 1 back
         try:
             os.dup2(2, 1)
         except OSError:  # fd 2 closed (2>&-): send it nowhere
@@ -122,10 +130,12 @@ class Guard:
                     os.close(devnull)
             except OSError:
                 pass
-        self.old_stdout = sys.stdout
         sys.stdout = sys.stderr
 
     def _restore(self) -> None:
+        if not self.redirected:
+            return
+        self.redirected = False
         sys.stdout = self.old_stdout
         try:
             sys.stderr.flush()
@@ -177,10 +187,11 @@ def supervise(argv: list) -> None:
     * The terminal sends Ctrl-C to the whole process group, a ``kill -INT`` to the parent alone,
       so the child ignores SIGINT and acts on the SIGUSR1 the parent sends it instead: exactly
       one KeyboardInterrupt either way.
-    * The child reports, over a pipe, a sweep's interrupt note and "back": it has left the
-      computation (:class:`Guard`) and is about to write its result or its own error.  Before
-      killing, the parent stops the child (SIGSTOP, waited for) and reads the pipe, so a child
-      that is already back is let go on (SIGCONT): never two error lines, never two documents.
+    * The child reports, over a pipe, a sweep's interrupt note and when it enters and leaves the
+      computation (:class:`Guard`); it writes its result or its error line only after.  After the
+      grace the parent stops the child (SIGSTOP, waited for) and reads the pipe: a child that is
+      not computing is in Python and about to say it, so it is let go on (SIGCONT).  Never two
+      error lines, never two documents.
     * On Linux the child asks the kernel to kill it when the parent dies (PR_SET_PDEATHSIG), so
       a SIGTERM or SIGKILL of the command leaves no computation running.
 
@@ -258,7 +269,7 @@ class _Supervisor:
 
     def __init__(self, pid: int, reports: int, json_mode: bool):
         self.pid, self.reports, self.json_mode = pid, reports, json_mode
-        self.note, self.back, self.buffer = "", False, b""
+        self.note, self.computing, self.buffer, self.reports_open = "", False, b"", True
         os.set_blocking(reports, False)
 
     def wait(self, wake_r: int, wake_w: int, mask) -> None:
@@ -272,18 +283,17 @@ class _Supervisor:
             self._exit_if_done(os.WNOHANG)
             timeout = None if deadline is None else deadline - time.monotonic()
             if timeout is not None and timeout <= 0:
-                if not self._stopped_and_back():
+                if self._stopped_computing():
                     self._end_child()
-                deadline = None  # back in Python: the interrupt is the child's to report
+                deadline = None  # in Python, not computing: the interrupt is the child's to report
                 continue
-            ready = select.select([wake_r, self.reports], [], [], timeout)[0]
+            ready = select.select([wake_r] + ([self.reports] if self.reports_open else []), [], [], timeout)[0]
             if self.reports in ready:
                 self._read()
             if wake_r in ready and signal.SIGINT in os.read(wake_r, 64) and not interrupted:
                 interrupted = True  # once: a second Ctrl-C would interrupt the child's report of the first
                 os.kill(self.pid, signal.SIGUSR1)  # the child's KeyboardInterrupt
-                if not self.back:
-                    deadline = time.monotonic() + INTERRUPT_GRACE
+                deadline = time.monotonic() + INTERRUPT_GRACE
 
     def _exit_if_done(self, flags: int) -> None:
         """Exit as the child did, if it has ended: with its status, or by the same signal."""
@@ -301,15 +311,15 @@ class _Supervisor:
             os._exit(128 + sig)  # a signal whose default is not to end the process
         os._exit(os.WEXITSTATUS(status))
 
-    def _stopped_and_back(self) -> bool:
-        """Stop the child and read all it has reported: is it back in Python, writing its own end?
-        If so it goes on (SIGCONT); if not it stays stopped, to be killed."""
+    def _stopped_computing(self) -> bool:
+        """Stop the child and read all it has reported: is it still computing?  If so it stays
+        stopped, to be killed; if not it goes on (SIGCONT) to say its own end."""
         os.kill(self.pid, signal.SIGSTOP)
-        self._exit_if_done(os.WUNTRACED)  # returns once it has stopped: it writes nothing more
+        self._exit_if_done(os.WUNTRACED)  # returns once it has stopped: it reports nothing more
         self._read()
-        if self.back:
+        if not self.computing:
             os.kill(self.pid, signal.SIGCONT)
-        return self.back
+        return self.computing
 
     def _read(self) -> None:
         while True:
@@ -317,7 +327,8 @@ class _Supervisor:
                 data = os.read(self.reports, 4096)
             except BlockingIOError:
                 return
-            if not data:  # closed: the child has ended (reaped on the next turn)
+            if not data:  # closed: the child has ended (reaped on SIGCHLD)
+                self.reports_open = False
                 return
             self.buffer += data
             *lines, self.buffer = self.buffer.split(b"\n")
@@ -325,15 +336,15 @@ class _Supervisor:
                 kind, text = json.loads(line)
                 if kind == "note":
                     self.note = text
-                elif kind == "back":
-                    self.back = True
+                else:
+                    self.computing = kind == "computing"
 
     def _end_child(self) -> None:
         """The child did not act on Ctrl-C within the grace: end it, say what it would have, exit 130."""
         os.kill(self.pid, signal.SIGKILL)
         os.waitpid(self.pid, 0)
         line = _interrupted(self.note)
-        if self.json_mode:  # not back: it has written nothing to stdout
+        if self.json_mode:  # still computing: it has written nothing to stdout
             _write(1, json.dumps({"error": line, "exit_status": 130}) + "\n")
         _write(2, ("\r\x1b[K" if os.isatty(2) else "") + f"error: {line}\n")
         os._exit(130)
