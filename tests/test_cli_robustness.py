@@ -214,7 +214,6 @@ def test_closed_stdout_and_stderr_are_no_traceback():
 
 # --- Ctrl-C --------------------------------------------------------------------------------------
 
-@pytest.mark.slow  # failed in a fresh clone under load (the same interrupt-handling defect as below): make test-all
 def test_ctrl_c_during_a_long_run_exits_130_with_one_line():
     p = subprocess.Popen([sys.executable, "-m", "verify", "trajectory", "disk", "--state", "theta=1.2", "--state",
                           "psidot=10", "--t-end", "1e6"],
@@ -232,12 +231,11 @@ def test_ctrl_c_during_a_long_run_exits_130_with_one_line():
     assert lines == ["error: interrupted (Ctrl-C)"], err
 
 
-@pytest.mark.slow  # known defect: the watchdog is a Python thread, so it needs the GIL; when heyoka's JIT
-# holds it (seen under load in a fresh clone) Ctrl-C waits for the compile. Run by make test-all, not make test.
 def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
     """At mp:100000 heyoka's JIT runs for many minutes inside one C++ call, where Python cannot act
-    on Ctrl-C; the CLI's watchdog does, after INTERRUPT_GRACE seconds, with the same one line (and
-    under --format json the error document)."""
+    on Ctrl-C; the CLI's supervisor process (the one the test started; it needs no GIL but its own)
+    does, after INTERRUPT_GRACE seconds, with the same one line (and under --format json the error
+    document)."""
     p = subprocess.Popen([sys.executable, "-m", "verify", "trajectory", "disk", "--state", "theta=1.2", "--t-end", "1",
                           "--precision", "mp:100000", "--format", "json", "--progress"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=ENV, cwd=ROOT)
@@ -245,8 +243,8 @@ def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
         first = p.stderr.readline()  # progress while compiling: "setting up (compiling the equations)"
         assert first.startswith("trajectory disk: setting up"), first
         p.send_signal(signal.SIGINT)
-        # the compile at mp:100000 lasts many minutes, so an exit within 300 s (the watchdog acts after
-        # INTERRUPT_GRACE = 2 s) can only be the watchdog's, however loaded the machine
+        # the compile at mp:100000 lasts many minutes, so an exit within 300 s (the supervisor acts after
+        # INTERRUPT_GRACE = 2 s) can only be the supervisor's, however loaded the machine
         out, err = p.communicate(timeout=300)
     finally:
         if p.poll() is None:
@@ -254,6 +252,54 @@ def test_ctrl_c_while_heyoka_compiles_for_minutes_exits_130_within_seconds():
     assert p.returncode == 130
     assert json.loads(out) == {"error": "interrupted (Ctrl-C)", "exit_status": 130}
     assert [ln for ln in err.splitlines() if not ln.startswith("trajectory disk:")] == ["error: interrupted (Ctrl-C)"]
+
+
+_HOLD_THE_GIL = """
+import ctypes, sys
+from verify.guard import supervise
+
+argv = sys.argv[1:]
+supervise(argv)  # as python -m verify does; what follows runs in the supervised child
+from verify import cli, sweep
+
+def hold_the_gil(*args, **kwargs):
+    print("holding the GIL", file=sys.stderr, flush=True)
+    libc = ctypes.PyDLL(None)  # PyDLL: the call keeps the GIL, as heyoka's JIT may
+    mutex = ctypes.create_string_buffer(64)  # zeros: an unlocked glibc mutex
+    libc.pthread_mutex_lock(mutex)
+    libc.pthread_mutex_lock(mutex)  # locked twice by one thread: waits forever, and signals do not end the wait
+
+cli.commands.solve = sweep.run_sweep = hold_the_gil
+sys.exit(cli.main(argv))
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="a glibc mutex holds the GIL forever")
+@pytest.mark.parametrize("command", ["trajectory", "sweep"])
+def test_ctrl_c_while_a_c_call_holds_the_gil_forever_exits_130(command, tmp_path):
+    """The defect behind the supervisor, made certain: a C call that holds the GIL and never returns
+    (no thread of that process can act), interrupted.  The supervisor ends it with the one line it
+    would have said, a sweep's resume note included, and under --format json the error document."""
+    spec = os.path.join(ROOT, "verify", "sweep", "specs", "disk-diameter-spin.toml")
+    argv = {"trajectory": ["trajectory", "disk", "--state", "theta=1", "--t-end", "1", "--format", "json"],
+            "sweep": ["sweep", spec, "--store", str(tmp_path / "s.sqlite"), "--quiet", "--yes"]}[command]
+    p = subprocess.Popen([sys.executable, "-c", _HOLD_THE_GIL, *argv], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, env=ENV, cwd=ROOT)
+    try:
+        first = p.stderr.readline()
+        assert first == "holding the GIL\n", first + p.stderr.read()
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=300)  # the call never returns: only the supervisor can end this
+    finally:
+        if p.poll() is None:
+            p.kill()
+    assert p.returncode == 130
+    line = one_error_line(err)
+    if command == "trajectory":
+        assert line == "error: interrupted (Ctrl-C)"
+        assert json.loads(out) == {"error": "interrupted (Ctrl-C)", "exit_status": 130}
+    else:
+        assert out == "" and str(tmp_path / "s.sqlite") in line and "rerun the same command to resume" in line
 
 
 def test_ctrl_c_in_process(capsys, monkeypatch):

@@ -11,8 +11,25 @@ negligible against the magnitudes of I's terms); ``max_drift_vs_terms`` = that /
 sum of those magnitudes along the run (``max_drift_vs_terms_in_eps`` in units of epsilon; on
 this run 3.0e-35 = 0.16 eps: the disk's |E| is 0.006 of its term scale).
 """
-from .engine.single import IntegrationError, InvariantTrace, Trajectory, solve
-from .precision import Precision, parse_precision
+
+# Imported on first use (PEP 562), not here: ``python -m verify`` imports this package before its
+# __main__ runs, and the CLI's supervisor must fork while nothing (heyoka starts a thread) is loaded.
+_LAZY = {"IntegrationError": "engine.single", "InvariantTrace": "engine.single", "Trajectory": "engine.single",
+         "solve": "engine.single", "Precision": "precision", "parse_precision": "precision"}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
 
 
 def score(run, case, **options):

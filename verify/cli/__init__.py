@@ -19,9 +19,9 @@ import os
 import sys
 
 from ..engine.single import IntegrationError
-from ..guard import Guard, Session, interrupted_line
+from ..guard import Guard, Session, interrupted_line, wants_json
 from .arguments import RunFailed, UsageError
-from .parser import _prepare, _wants_json, parser
+from .parser import _prepare, parser
 
 
 # --- main -------------------------------------------------------------------------------------
@@ -38,7 +38,7 @@ def _say(stream, line: str) -> None:
 def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     out, err = sys.stdout, sys.stderr
-    session = Session(_wants_json(argv))
+    session = Session(wants_json(argv))
     debug = "--debug" in argv
 
     def fail(code: int, line: str) -> int:

@@ -174,10 +174,3 @@ def _prepare(argv: list, ap: argparse.ArgumentParser) -> tuple:
             out.append(tok)
         i += 1
     return out, debug
-
-
-def _wants_json(argv: list) -> bool:
-    for i, tok in enumerate(argv):
-        if tok == "--format=json" or (tok == "--format" and i + 1 < len(argv) and argv[i + 1] == "json"):
-            return True
-    return False
