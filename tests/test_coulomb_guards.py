@@ -120,6 +120,31 @@ def test_the_regression_start_tells_one_story_in_double_and_quad(capsys):
     capsys.readouterr()
 
 
+def _conditioning(body, state, velocity, mu, run) -> float | None:
+    """The largest end gap (as :func:`_gap`) one ulp of any of theta, thetadot, phidot, psidot moves the double
+    run by, whether or not it changes the phases (a slip that grazes s = 0 sticks for an instant in one run and
+    not in the other, with the same motion; measured: double 15 phases, quad 13, ends 1e-13 apart); None if a
+    nudged run fails."""
+    worst = 0.0
+    for name in ("theta", "thetadot", "phidot", "psidot"):
+        value = float(state.get(name, "0"))
+        nudged = dict(state, **{name: repr(float(np.nextafter(value, np.inf)))})
+        try:
+            moved = hybrid.solve(body, "0.3", nudged, friction=mu, velocity=velocity, n_eval=31)
+        except IntegrationError:
+            return None
+        worst = max(worst, _gap(moved, run))
+    return worst
+
+
+def agreement_bound(run, conditioning) -> float:
+    """How far the double run's end may be from quad's: each of its N Taylor steps and switches commits about
+    one ulp, carried to the end with about the one-ulp conditioning; as independent roundings they add like a
+    random walk, sqrt(N) (measured: 0.7 to 5 times the one-ulp gap on 1 to 22 phases); 4 as margin, plus 16
+    eps for the final roundings."""
+    return 4 * math.sqrt(run.steps + len(run.phases)) * conditioning + 16 * 2.0 ** -52
+
+
 def _gap(a, b) -> float:
     """Largest difference at the end, relative to each component's size (angles, rates; at least 1)."""
     return max(abs(float(a.y[i, -1]) - float(b.y[i, -1])) / max(1.0, abs(float(b.y[i, -1]))) for i in range(6))
@@ -173,22 +198,38 @@ def test_random_coulomb_starts_end_ok_inside_the_domain_or_with_a_named_failure(
 @pytest.mark.parametrize("case", _starts(2026, 300), ids=lambda c: f"{c[0][:4]}-mu{c[3]}")
 def test_300_random_coulomb_starts_double_and_quad(case):
     """300 starts, both bodies, mu from 0 to 2: the property in double and quad, and where both are handed
-    out with the same phases, their ends agree within four times what one ulp of theta moves the double run
-    plus 16 eps (the motion's conditioning, measured per start)."""
+    out, their ends agree within :func:`agreement_bound` of the one-ulp conditioning measured on each start
+    (the phases may differ by a slip grazing s = 0: the ends are compared, not the phase lists)."""
     body, state, velocity, mu = case
     double = _judge(body, state, velocity, mu, "double")
     quad = _judge(body, state, velocity, mu, "quad")
     if double is None or quad is None:
         return
-    assert [p.kind for p in double.phases] == [p.kind for p in quad.phases], (case, double.phases, quad.phases)
-    moved = dict(state, theta=repr(float(state["theta"]) * (1 + 2.0 ** -52)))
-    try:
-        nudged = hybrid.solve(body, "0.3", moved, friction=mu, velocity=velocity, n_eval=31)
-    except IntegrationError:
-        return
-    if [p.kind for p in nudged.phases] != [p.kind for p in double.phases]:
-        return  # one ulp changes the story: a grazing switch, conditioning unbounded
-    assert _gap(double, quad) <= 4 * _gap(nudged, double) + 16 * 2.0 ** -52, case
+    if double.outcome == "ok":
+        assert double.t[-1] == 0.3 and float(quad.t[-1]) == 0.3
+    conditioning = _conditioning(body, state, velocity, mu, double)
+    if conditioning is None:
+        pytest.skip("a run one ulp away from the start failed: no conditioning measured")
+    assert _gap(double, quad) <= agreement_bound(double, conditioning), case
+
+
+def test_a_run_whose_end_falls_inside_a_slip_onsets_series_ends_there(monkeypatch):
+    """The series of a slips onset at t = 0.2990584 reaches t1 past t_end = 0.3 in double (not in quad): the
+    run ended ok at the onset, its state 0.065 (relative) from quad's at t = 0.3.  The output times between an
+    onset and heyoka's start now come from the onset's own series; both end at 0.3 and agree (measured:
+    5e-13 relative; 1e-9 asserted, far below the 0.065 of the wrong end)."""
+    case = ("disk+coulomb", {"theta": "2.623285", "thetadot": "0.4530", "phidot": "-9.6958", "psidot": "-10.4970"},
+            ("-1.3625", "-17.1864"), "0.6997")
+    double = _judge(*case, "double")
+    quad = _judge(*case, "quad")
+    assert double.outcome == quad.outcome == "ok" and double.t[-1] == 0.3 and float(quad.t[-1]) == 0.3
+    assert [p.kind for p in double.phases] == [p.kind for p in quad.phases] and len(double.phases) == 9
+    assert _gap(double, quad) <= 1e-9
+    # negative control: without the onset's outputs the run stops short of t_end, and says so
+    monkeypatch.setattr(hybrid._Run, "_outputs_before", lambda self, t, t0, state_at: [])
+    with pytest.raises(IntegrationError) as err:
+        hybrid.solve(case[0], "0.3", case[1], friction=case[3], velocity=case[2], n_eval=31)
+    assert err.value.outcome == "failed:short_run"
 
 
 # --- the rolling models with friction= -------------------------------------------------------------------

@@ -35,10 +35,15 @@ Switches and their maps:
   does not reach eps at any t1 tried (or a direction slope B_alpha that does not restore) raises
   :class:`UnsupportedTransition` naming the time, with the run up to there.
 
+Guards: every phase and switch checks itself (:mod:`verify.engine.hybrid_guards`: the domain, E + W, each
+switch's constraint, Painleve's jam, a run that stops short of t_end), and a run that breaks one raises
+:class:`IntegrationError` with its named outcome and the run up to there.  Output times that fall between an
+onset at s = 0 and heyoka's start take their states from the onset's own series or Taylor polynomial.
+
 Error budget: each phase's Taylor integration at tolerance epsilon; each switch time located by
 heyoka's event root finding to a few epsilon of t; the maps are exact (no rounding but the
-handing over of the same numbers).  E + W is checked over the whole run (:attr:`HybridSolution.
-energy_plus_work_drift_in_eps`).  The sliding phases are not cut into segments with phi, psi moved
+handing over of the same numbers).  E + W is checked after every phase (:func:`~verify.engine.hybrid_guards.check_balance`) and reported
+(:attr:`HybridSolution.energy_plus_work_drift_in_eps`).  The sliding phases are not cut into segments with phi, psi moved
 out (as :mod:`verify.engine.segments` does for long rolling runs): a sliding phase lasts until
 the slip dies out, a fraction of a second at the rates the suite uses; its steps are capped at one
 radian of the fastest initial rate as every run's are (:func:`verify.engine.problem.max_step`).
@@ -112,6 +117,8 @@ class HybridSolution:
         run is handed out only if it is within :func:`~verify.engine.hybrid_guards.balance_bound_in_eps`.
     switch_times : tuple
         Times where a phase ended and the next began.
+    steps : int
+        heyoka's Taylor steps over every phase.
     outcome, status, message
         'ok' (status 0), the last phase's terminal event ('event:lies_flat', 'event:contact_lost', status 1),
         or, on the partial run an :class:`IntegrationError` carries, its named failure
@@ -137,6 +144,7 @@ class HybridSolution:
     status: int
     message: str
     rolling_runs: tuple  # the engine's Trajectory of each rolling phase
+    steps: int = 0  # Taylor steps of every phase
 
     def __getitem__(self, name):
         return self.y[STATE_NAMES.index(name)]
@@ -298,6 +306,9 @@ def solve(
             run.rolling(prec.zero(), y0)
         else:
             run.sliding(prec.zero(), prec.array(list(y0) + [s, alpha, prec.zero()]))
+    if run.outcome == "ok" and not (run.t and run.t[-1] == t_end):  # 'ok' means t_end was reached: say so
+        raise guards.fail(run, guards.SHORT_RUN, f"{name}: the run ended ok at t = {float(run.t[-1]) if run.t else 0:.9g}"
+                                                 f" before t_end = {float(t_end):.9g} (a bug of the driver)", None, None)
     return run.result()
 
 
@@ -388,6 +399,10 @@ class _Run:
         prec, c = self.prec, self.c
         begun = t0 if onset is None else onset[0]
         self._check_sliding_start(t0, y0, onset)
+        inside = [] if onset is None else onset[2]  # output times between the onset and t0 (_outputs_before)
+        if inside and inside[-1][0] >= self.t_end:  # the run ends before heyoka would start
+            self.phases.append(Phase("sliding", begun, None, "running"))
+            return self._end_phase_in_onset(begun, onset, inside)
         ta = _copy(_sliding_template(self.name, prec))
         ta.time = t0
         ta.state[:] = y0
@@ -405,6 +420,7 @@ class _Run:
         states = [np.array(r) for r in out]
         if onset is not None:  # the phase's first output is where it began, s = 0, not the Euler step's end
             times[0], states[0] = onset[0], np.array(onset[1])
+            times[1:1], states[1:1] = [g for g, _ in inside], [np.array(v) for _, v in inside]
         if outcome == hy.taylor_outcome.time_limit:
             ended = "ok"
         elif outcome == hy.taylor_outcome.cb_stop or (outcome == hy.taylor_outcome.err_nf_state
@@ -452,6 +468,19 @@ class _Run:
             return self._after_stick(t1, y8)
         if ended != "ok":
             self.outcome, self.message = f"event:{ended}", f"the sliding phase ended at {ended}"
+
+    def _end_phase_in_onset(self, begun, onset, inside):
+        """A sliding phase whose t_end falls between its onset and heyoka's start: its outputs are the onset's
+        own solution's (series or Taylor polynomial), and the run ends ok there."""
+        times = [onset[0]] + [g for g, _ in inside]
+        states = [np.array(onset[1])] + [np.array(v) for _, v in inside]
+        values = _evaluate(self.c.sliding_function, self.prec.array(np.concatenate(states)).reshape(len(states), -1).T,
+                           self.par_vector)
+        self._record("sliding", times, states, values[0], _term_scale(values, 2), [s[_SLIP] for s in states],
+                     [s[_DIRECTION] for s in states], [s[_WORK] for s in states])
+        self.phases[-1] = Phase("sliding", begun, times[-1], "ok")
+        self.work_so_far = states[-1][_WORK]
+        self._check_phase("sliding", times, [s[0] for s in states], [s[3] for s in states], "ok", states[-1])
 
     def _after_collapse(self, ta, watch, outcome):
         """(ended, t, state) where a sliding phase's steps collapsed (:class:`_CollapseWatch`) at ``ta``'s state.
@@ -549,7 +578,8 @@ class _Run:
         y = prec.array(list(y8) + [prec.zero(), alpha0, self.work_so_far])
         tau = onset_step(prec, y8, self.pars)
         start = _second_order_start(c, y, lam, tau, self.par_vector)
-        return self.sliding(t + tau, start, onset=(t, y))
+        inside = self._outputs_before(t, t + tau, lambda dt: _second_order_start(c, y, lam, dt, self.par_vector))
+        return self.sliding(t + tau, start, onset=(t, y, inside))
 
     # --- rolling ---------------------------------------------------------------------------------
     def rolling(self, t0, y8):
@@ -593,7 +623,7 @@ class _Run:
         where heyoka takes over."""
         prec = self.prec
         try:
-            t1, start, series, _ = slip_onset.series_start(self.name, prec, y8, self.slip_direction(y8),
+            t1, start, series, order = slip_onset.series_start(self.name, prec, y8, self.slip_direction(y8),
                                                            self.work_so_far, self.par_vector,
                                                            max_step(y8, self.pars, prec))
         except slip_onset.SeriesDoesNotSettle as err:
@@ -601,7 +631,16 @@ class _Run:
                                        f"the onset's series does not settle: {err}") from None
         alpha0 = slip_onset.from_arb(prec, series.alpha[0])
         y = prec.array(list(y8) + [prec.zero(), alpha0, self.work_so_far])
-        return self.sliding(t + t1, prec.array(start), onset=(t, y))
+        inside = self._outputs_before(t, t + t1,
+                                      lambda tau: prec.array(slip_onset.series_state(series, prec, tau, order,
+                                                                                     self.work_so_far)))
+        return self.sliding(t + t1, prec.array(start), onset=(t, y, inside))
+
+    def _outputs_before(self, t, t0, state_at):
+        """[(g, state)] for the output times g in (t, t0], between an onset at t and its start at t0, from the
+        onset's own solution ``state_at(g - t)`` (its series or Taylor polynomial, exact there to the same
+        order: g - t <= t0 - t).  Without them a run whose t_end falls there would end at the onset."""
+        return [(g, state_at(g - t)) for g in self.grid if t < g <= t0]
 
     def slip_direction(self, y8):
         """alpha of the slip at an onset: the direction of -F_req (module docstring)."""
@@ -724,6 +763,7 @@ class _Run:
             phase_index=np.array(self.index), phases=tuple(self.phases), energy=energy, work=work,
             energy_scale=scale, energy_plus_work_drift_in_eps=drift, switch_times=switches,
             outcome=self.outcome, status=status, message=self.message, rolling_runs=tuple(self.rolling_runs),
+            steps=self.steps,
         )
 
 

@@ -14,6 +14,8 @@ passed its guard; otherwise it ends with one of these outcomes (status 1, the co
   before it is set to 0 is not within eps of 0, or whose contact does not move with the rolling
   model's no-slip velocity; a ``slips`` event whose mu_req is not mu; a ``contact_lost`` event whose
   N is not 0 (:func:`check_switch`);
+* ``failed:short_run`` -- a run whose phases all ended ``ok`` did not reach t_end (measured once: a
+  slip onset whose series reached past t_end handed out the onset's state as the end);
 * ``painleve:jam`` -- a sliding phase reaches, or starts at, Painleve's margin P <= 0
   (:func:`models.coulomb.painleve_margin`): the rigid body with Coulomb friction has no unique motion
   from there; possible only for mu above :func:`models.coulomb.critical_friction`.
@@ -32,8 +34,9 @@ OUTSIDE_DOMAIN = "failed:outside_domain"
 ENERGY_BALANCE = "failed:energy_balance"
 SWITCH_CONSTRAINT = "failed:switch_constraint"
 PAINLEVE_JAM = "painleve:jam"
+SHORT_RUN = "failed:short_run"
 #: Every outcome of a run that is not handed out as a result (status 1, exit 1), with heyoka's own.
-FAILED_OUTCOMES = (OUTSIDE_DOMAIN, ENERGY_BALANCE, SWITCH_CONSTRAINT, PAINLEVE_JAM)
+FAILED_OUTCOMES = (OUTSIDE_DOMAIN, ENERGY_BALANCE, SWITCH_CONSTRAINT, PAINLEVE_JAM, SHORT_RUN)
 
 #: eps of E's term scale one Taylor step may move E + W by.  heyoka's step at tolerance eps keeps the
 #: local error of each component within eps of the state's size; E is a sum of terms of degree <= 2

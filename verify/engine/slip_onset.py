@@ -204,9 +204,23 @@ def series_start(name: str, prec, y8, alpha0, work0, par_vector, cap, orders: in
         else:
             raise SeriesDoesNotSettle(f"no start time down to 2^-12 of the step cap {cap} reaches eps in "
                                       f"{orders} orders")
-        values = [sum((c[k] * t1 ** k for k in range(truncation + 1)), arb(0)) for c in components]
-        start = [from_arb(prec, v) for v in values[:10]] + [from_arb(prec, to_arb(prec, work0) + values[10])]
-        return from_arb(prec, t1), start, series, truncation
+        t1 = from_arb(prec, t1)
+        return t1, series_state(series, prec, t1, truncation, work0), series, truncation
+    finally:
+        ctx.prec = old
+
+
+def series_state(series: OnsetSeries, prec, tau, truncation: int, work0) -> list:
+    """The eleven sliding components a time ``tau`` (a number of ``prec``, 0 < tau <= t1) after the onset:
+    the series summed to ``truncation`` (at tau <= t1 its terms are smaller than at t1, where they reached
+    eps), the work from ``work0``."""
+    old = ctx.prec
+    ctx.prec = series.bits
+    try:
+        t = to_arb(prec, tau)
+        components = series.x + [series.s, series.alpha, series.w]
+        values = [sum((c[k] * t ** k for k in range(min(truncation, len(c) - 1) + 1)), arb(0)) for c in components]
+        return [from_arb(prec, v) for v in values[:10]] + [from_arb(prec, to_arb(prec, work0) + values[10])]
     finally:
         ctx.prec = old
 
