@@ -31,13 +31,13 @@ def _shown(text) -> str:
     return text if text and not any(c.isspace() for c in text) and text.isprintable() else repr(text)
 
 
-def _decimal(text, what: str) -> str:
-    """``text`` if it is a finite decimal number (1.2, -3e-4, .5); else UsageError naming it."""
+def _decimal(text, what: str, example: str = "1.2 or -3e-4") -> str:
+    """``text`` if it is a finite decimal number (1.2, -3e-4, .5); else UsageError naming it and ``example``."""
     s = str(text).strip()
     if _NON_FINITE.fullmatch(s):
-        raise UsageError(f"{what}: {s!r} is not a finite number; allowed: a finite decimal number such as 1.2 or -3e-4")
+        raise UsageError(f"{what}: {s!r} is not a finite number; allowed: a finite decimal number such as {example}")
     if not _DECIMAL.fullmatch(s) or not s.isascii():
-        raise UsageError(f"{what}: {str(text)!r} is not a number; allowed: a decimal number such as 1.2 or -3e-4")
+        raise UsageError(f"{what}: {str(text)!r} is not a number; allowed: a decimal number such as {example}")
     return s
 
 

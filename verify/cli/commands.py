@@ -71,7 +71,7 @@ def _coulomb_trajectory(args, session: Session, precision) -> int:
     state, params = _numeric_pairs(args.state, "state"), _numeric_pairs(args.param, "param")
     t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
     n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)
-    friction = _decimal(args.friction, "--friction")
+    friction = _decimal(args.friction, "--friction", "0.5 (a Coulomb coefficient >= 0)")
     if friction.startswith("-") and any(c in "123456789" for c in friction):
         raise UsageError(f"--friction {friction!r}: allowed a Coulomb coefficient >= 0 such as 0.5")
     velocity = None

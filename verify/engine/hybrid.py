@@ -869,8 +869,11 @@ def _bits(prec: Precision) -> int:
 
 
 def _domain_end(end, prec: Precision):
-    """A domain end (sympy: 0, pi, pi/2) as a number of the run's precision."""
-    return prec.number(str(sp.N(end, int(_bits(prec) * 0.302) + 10)))
+    """A domain end (sympy: 0, pi, pi/2) as a number of the run's precision (the start check's own rounding,
+    :func:`verify.engine.validation._domain_end`)."""
+    from .validation import _domain_end as rounded_like
+
+    return rounded_like(end, prec.zero())
 
 
 def _dtype(prec: Precision):
