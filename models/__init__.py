@@ -8,63 +8,72 @@
 {'I1': '0.4993', 'I3': '0.8727', 'h': '0.4344'}
 
 See :mod:`models.symbols` for the conventions (3-1-3 Euler angles, paper Fig. 1).
+
+The names (:data:`ALL_NAMES`, ...) and :mod:`models.catalogue` come without sympy; the models
+themselves, and the submodules, are imported when first asked for (``get_model``,
+``models.disk``, ``models.Model``), so that a command that only lists or checks names answers
+at once.
 """
 from __future__ import annotations
 
-from . import disk, effective, gyroscope, hurricane, ring, sliding_disk
-from .base import Model
-from .symbols import STATE_NAMES
+import importlib
 
-_BUILDERS = {
-    "disk": (disk.model, ("derived", "paper")),
-    "ring": (ring.model, ("derived", "paper")),
-    "hurricane": (hurricane.model, ("derived", "paper")),
-    "sliding-disk": (sliding_disk.model, ("derived",)),
-    "gyroscope": (gyroscope.model, ("derived", "paper")),
-    "effective": (effective.model, ("derived",)),
-}
+from .catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES, DISSIPATIVE_NAMES, MODEL_NAMES, STATE_NAMES
 
-MODEL_NAMES = tuple(_BUILDERS)
+_EQUATIONS = {"disk": ("derived", "paper"), "ring": ("derived", "paper"), "hurricane": ("derived", "paper"),
+              "sliding-disk": ("derived",), "gyroscope": ("derived", "paper"), "effective": ("derived",)}
+_BUILDERS = {"disk": "disk", "ring": "ring", "hurricane": "hurricane", "sliding-disk": "sliding_disk",
+             "gyroscope": "gyroscope", "effective": "effective"}
 
 
-def _dissipative():
+def _dissipative(name: str):
     from . import dissipative, ring_dissipation
 
-    out = {f"disk+{n}": (lambda eq, n=n: dissipative.dissipative_disk(n)) for n in dissipative.LAW_NAMES}
-    out.update({f"ring+{n}": (lambda eq, n=n: ring_dissipation.dissipative_ring(n)) for n in ring_dissipation.LAW_NAMES})
-    return out
-
-
-#: Models with an explicit dissipative term (derived equations only; energy + work is conserved).
-DISSIPATIVE_NAMES = ("disk+moffatt", "disk+contact-rate", "ring+air-drag", "ring+rolling-friction")
-ALL_NAMES = MODEL_NAMES + DISSIPATIVE_NAMES
-#: Bodies that roll or slide with Coulomb friction: a rolling model plus the sliding phase of
-#: :mod:`models.coulomb`, run by :mod:`verify.engine.hybrid` (not a single :class:`Model`).
-COULOMB_NAMES = ("disk+coulomb", "ring+coulomb")
+    body, law = name.split("+", 1)
+    return dissipative.dissipative_disk(law) if body == "disk" else ring_dissipation.dissipative_ring(law)
 
 
 def sources(name: str) -> tuple:
     """The equation sources a model has ('derived', and 'paper' where transcribed)."""
     _check_name(name)
-    return _BUILDERS[name][1] if name in _BUILDERS else ("derived",)
+    return _EQUATIONS.get(name, ("derived",))
 
 
-def get_model(name: str, equations: str = "derived") -> Model:
+def get_model(name: str, equations: str = "derived"):
     """The model called ``name`` with equations from ``equations`` ('derived' or 'paper').
 
     ``name`` is one of :data:`MODEL_NAMES` (the paper's conservative bodies) or of
     :data:`DISSIPATIVE_NAMES` (a body with an explicit dissipative term).
     """
     _check_name(name)
-    builder, allowed = _BUILDERS[name] if name in _BUILDERS else (_dissipative()[name], ("derived",))
+    allowed = sources(name)
     if equations not in allowed:
         raise ValueError(f"equations={equations!r} for model {name!r}; allowed: {', '.join(allowed)}")
-    return builder(equations)
+    if name in _BUILDERS:
+        return importlib.import_module(f".{_BUILDERS[name]}", __name__).model(equations)
+    return _dissipative(name)
 
 
 def _check_name(name: str) -> None:
     if name not in ALL_NAMES:
-        raise ValueError(f"unknown model {name!r}; allowed: {', '.join(ALL_NAMES)}")
+        hint = ""
+        if name in ALIASES:
+            model, params = ALIASES[name]
+            hint = f" ({name!r} is the {model} with {', '.join(f'{k} = {v}' for k, v in params.items())})"
+        raise ValueError(f"unknown model {name!r}{hint}; allowed: {', '.join(ALL_NAMES)}")
 
 
-__all__ = ["ALL_NAMES", "COULOMB_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES", "get_model", "sources"]
+def __getattr__(attr: str):
+    """``models.Model`` and the submodules (``models.disk``), imported when first used."""
+    if attr == "Model":
+        from .base import Model
+
+        return Model
+    try:
+        return importlib.import_module(f".{attr}", __name__)
+    except ModuleNotFoundError:
+        raise AttributeError(f"module 'models' has no attribute {attr!r}") from None
+
+
+__all__ = ["ALIASES", "ALL_NAMES", "COULOMB_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES",
+           "get_model", "sources"]

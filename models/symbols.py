@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import sympy as sp
 
-STATE_NAMES = ("theta", "phi", "psi", "thetadot", "phidot", "psidot", "x", "y")
+from .catalogue import STATE_NAMES
 
 theta, phi, psi, thetadot, phidot, psidot, x, y = sp.symbols(STATE_NAMES, real=True)
 STATE = (theta, phi, psi, thetadot, phidot, psidot, x, y)

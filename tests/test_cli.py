@@ -26,7 +26,7 @@ def test_trajectory_json_in_double(capsys):
     assert code == 0
     rec = json.loads(out)
     assert list(rec) == ["model", "equations", "precision", "params", "t_end", "outcome", "t", "steps", "state",
-                         "invariants", "friction_required", "friction"]
+                         "invariants", "friction_required", "friction", "start", "files"]
     assert rec["friction"] is None  # unlimited friction unless --friction is given
     assert rec["model"] == "disk" and rec["equations"] == "derived" and rec["precision"] == "double"
     assert rec["params"] == {"k": 0.25, "g": 980.0}
@@ -61,7 +61,7 @@ def test_event_outcome_on_the_command_line(capsys):
 
 def test_models_lists_every_model(capsys):
     code, out, _ = run(capsys, "models", "--format", "json")
-    rec = {m["model"]: m for m in json.loads(out)}
+    rec = {m["model"]: m for m in json.loads(out)["models"]}
     assert code == 0
     assert set(rec) == {"disk", "ring", "hurricane", "sliding-disk", "gyroscope", "effective",
                         "disk+moffatt", "disk+contact-rate", "ring+air-drag", "ring+rolling-friction"}
@@ -73,7 +73,7 @@ BAD = [
     (["trajectory", "disc", "--t-end", "1"], "unknown model 'disc'"),
     (["trajectory", "disk", "--param", "kk=1", "--t-end", "1"], "unknown parameter 'kk'"),
     (["trajectory", "disk", "--state", "omega=1", "--t-end", "1"], "unknown state variable 'omega'"),
-    (["trajectory", "disk", "--state", "theta=abc", "--t-end", "1"], "'abc' is not a number"),
+    (["trajectory", "disk", "--state", "theta=abc", "--t-end", "1"], "--state theta='abc': unknown name 'abc'"),
     (["trajectory", "disk", "--state", "theta=nan", "--t-end", "1"], "'nan' is not a finite number"),
     (["trajectory", "disk", "--param", "g=inf", "--t-end", "1"], "'inf' is not a finite number"),
     (["trajectory", "disk", "--param", "k=0", "--state", "theta=1", "--t-end", "1"], "k=0 is out of its physical range (0, 0.5]"),
@@ -117,8 +117,8 @@ def test_exit_status_from_a_real_process():
     bad = subprocess.run([sys.executable, "-m", "verify", "trajectory", "disk", "--t-end", "1", "--param", "k=-1"],
                          capture_output=True, text=True, env=env, cwd=ROOT)
     assert bad.returncode == 2 and "k=-1 is out of its physical range" in bad.stderr and bad.stdout == ""
-    missing = subprocess.run([sys.executable, "-m", "verify", "trajectory", "disk"], capture_output=True, text=True,
-                             env=env, cwd=ROOT)
+    missing = subprocess.run([sys.executable, "-m", "verify", "trajectory", "disk", "--state", "theta=1"],
+                             capture_output=True, text=True, env=env, cwd=ROOT)
     assert missing.returncode == 2 and "--t-end" in missing.stderr
 
 

@@ -18,6 +18,7 @@ import pytest
 
 import verify.cli as cli
 from verify.cli import arguments, commands, output, progress
+from verify.engine import single
 from verify.cli import main
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -66,14 +67,14 @@ def test_what_cpp_prints_to_stdout_during_a_run_goes_to_stderr():
     script = (
         "import ctypes, os, sys\n"
         "import verify.cli as cli\n"
-        "import verify.cli.commands as commands\n"
-        "real = commands.solve\n"
+        "import verify.engine.single as single\n"
+        "real = single.solve\n"
         "def noisy(*a, **k):\n"
         "    os.write(1, b'fd-noise\\n')\n"
         "    ctypes.CDLL(None).printf(b'c-noise\\n')\n"
         "    print('python-noise')\n"
         "    return real(*a, **k)\n"
-        "commands.solve = noisy\n"
+        "single.solve = noisy\n"
         "sys.exit(cli.main(['trajectory', 'disk', '--state', 'theta=1e-300', '--t-end', '1', '--format', 'json']))\n"
     )
     p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=ENV, cwd=ROOT, timeout=120)
@@ -180,7 +181,7 @@ def test_negative_t_end_and_theta(capsys):
 
 
 def test_argparse_errors_are_one_line(capsys):
-    for argv in (["trajectory", "disk"], [], ["nope"], ["models", "--format", "xml"], ["trajectory"]):
+    for argv in (["trajectory", "disk", "--state", "theta=1"], [], ["nope"], ["models", "--format", "xml"], ["trajectory"]):
         code, out, err = run(capsys, *argv)
         assert code == 2 and out == ""
         one_error_line(err)
@@ -260,6 +261,7 @@ from verify.guard import supervise
 
 argv = sys.argv[1:]
 supervise(argv)  # as python -m verify does; what follows runs in the supervised child
+import verify.engine.single
 from verify import cli, sweep
 
 def hold_the_gil(*args, **kwargs):
@@ -269,7 +271,7 @@ def hold_the_gil(*args, **kwargs):
     libc.pthread_mutex_lock(mutex)
     libc.pthread_mutex_lock(mutex)  # locked twice by one thread: waits forever, and signals do not end the wait
 
-cli.commands.solve = sweep.run_sweep = hold_the_gil
+verify.engine.single.solve = sweep.run_sweep = hold_the_gil
 sys.exit(cli.main(argv))
 """
 
@@ -306,7 +308,7 @@ def test_ctrl_c_in_process(capsys, monkeypatch):
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(commands, "solve", interrupted)
+    monkeypatch.setattr(single, "solve", interrupted)
     code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1")
     assert code == 130 and out == "" and one_error_line(err) == "error: interrupted (Ctrl-C)"
     code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1", "--format", "json")
@@ -384,7 +386,7 @@ def test_an_unexpected_error_is_one_line_and_debug_shows_the_traceback(capsys, m
     def broken(*args, **kwargs):
         return 1 / 0
 
-    monkeypatch.setattr(commands, "solve", broken)
+    monkeypatch.setattr(single, "solve", broken)
     code, out, err = run(capsys, "trajectory", "disk", "--state", "theta=1", "--t-end", "1")
     line = one_error_line(err)
     assert code == 1 and out == "" and "ZeroDivisionError" in line and "--debug" in line
@@ -426,7 +428,7 @@ def _until_reported(stream, text, seconds):
 
 
 def _slow_solve(seconds):
-    real = commands.solve
+    real = single.solve
 
     def solve(model, t_end, state=None, params=None, *, progress=None, **kwargs):
         if progress is not None:
@@ -442,7 +444,7 @@ def test_progress_through_solves_hook(capsys, monkeypatch):
     """With solve(progress=callable(t, steps)) the CLI shows t, steps and the rate on stderr; with
     --format json only under --progress."""
     monkeypatch.setattr(progress, "PROGRESS_INTERVAL", 0.05)
-    monkeypatch.setattr(commands, "solve", _slow_solve(60))
+    monkeypatch.setattr(single, "solve", _slow_solve(60))
     argv = ["trajectory", "disk", "--state", "theta=1.2", "--state", "psidot=10", "--t-end", "1"]
     code, out, err = run(capsys, *argv)
     assert code == 0 and "outcome     ok" in out

@@ -18,7 +18,7 @@ import json
 import os
 import sys
 
-from ..engine.single import IntegrationError
+from ..engine.errors import IntegrationError
 from ..guard import Guard, Session, interrupted_line, wants_json
 from .arguments import RunFailed, UsageError
 from .parser import _prepare, parser

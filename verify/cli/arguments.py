@@ -3,16 +3,11 @@ from __future__ import annotations
 
 import re
 
-from ..precision import FIXED, parse_precision
-
 # --- minimum MPFR precision -----------------------------------------------------------------
-# verify.precision.MIN_MPFR_BITS (53, double's significand; the argument is there) refuses
-# mp:BITS below it in parse_precision; the CLI checks it first so that mp:2, mp:0 and mp:-5
-# get the same one line.  The fallback keeps the floor if precision.py does not define it.
-try:
-    from ..precision import MIN_MPFR_BITS as MP_MIN_BITS
-except ImportError:  # pragma: no cover
-    MP_MIN_BITS = 53
+#: verify.precision.MIN_MPFR_BITS (53, double's significand; the argument is there), written out so
+#: that the parser's help needs no heyoka (tests/test_cli_speed.py checks the two agree).  The CLI
+#: checks it first so that mp:2, mp:0 and mp:-5 get the same one line.
+MP_MIN_BITS = 53
 N_EVAL_MAX = 1_000_000
 _DECIMAL = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?")
 _NON_FINITE = re.compile(r"[+-]?(inf|infinity|nan)", re.IGNORECASE)
@@ -71,6 +66,8 @@ def _precision(text, option: str = "--precision"):
     """parse_precision, with the MPFR floor (verify.precision.MIN_MPFR_BITS) checked first."""
     import heyoka as hy
 
+    from ..precision import FIXED, parse_precision
+
     s = str(text).strip()
     allowed = f"double, long, quad or mp:BITS (MPFR, BITS an integer from {MP_MIN_BITS} to {hy.real_prec_max()})"
     m = re.fullmatch(r"mp:\s*([+-]?\d+)", s)
@@ -107,3 +104,25 @@ def _numeric_pairs(items, what: str) -> dict:
     for name, value in pairs.items():
         _decimal(value, f"--{what} {name}={_shown(value)}")
     return pairs
+
+
+def _value_pairs(items, what: str) -> dict:
+    """NAME=VALUE pairs whose values are decimals or simple expressions (``pi/2``, ``sqrt(980/1.25)``,
+    ``16720/33489``): plain decimals stay text, expressions become exact sympy numbers
+    (:func:`verify.expressions.read_value`); the names are checked by the computation."""
+    pairs = _pairs(items, what)
+    if all(_DECIMAL.fullmatch(v) and v.isascii() for v in pairs.values()):
+        for name, value in pairs.items():  # the decimal checks (and messages) of before
+            _decimal(value, f"--{what} {name}={_shown(value)}")
+        return pairs
+    from ..expressions import ExpressionError, read_value
+
+    out = {}
+    for name, value in pairs.items():
+        if _NON_FINITE.fullmatch(value):
+            _decimal(value, f"--{what} {name}={_shown(value)}")
+        try:
+            out[name] = read_value(value, f"--{what} {name}=")
+        except ExpressionError as err:
+            raise UsageError(str(err).replace("= '", "='", 1)) from None
+    return out

@@ -1,146 +1,109 @@
-"""The commands: ``trajectory``, ``models``, ``threshold``, ``spindown``, ``reference``, ``score``, ``sweep``, ``report``, ``bench``; each
-reads its arguments, runs, and hands its output to the session."""
+"""The commands ``models``, ``threshold``, ``spindown``, ``reference``, ``score``, ``sweep``, ``report``, ``bench``;
+each reads its arguments, runs, and hands its output to the session (``trajectory`` is :mod:`.run_command`'s).
+Heavy modules are imported inside each command, so that ``--help`` and the listings answer at once."""
 from __future__ import annotations
 
 import math
 import sys
 import time
 
-from models import ALL_NAMES, COULOMB_NAMES, get_model, sources
-from models.symbols import STATE_NAMES
-
-from ..engine.single import IntegrationError, solve
 from ..guard import Session
-from .arguments import (_DECIMAL, N_EVAL_MAX, RunFailed, UsageError, _decimal, _numeric_pairs, _positive,
-                        _positive_int, _precision, _shown)
-from .output import _dumps, _not_ok, _text, trajectory_record
-from .progress import _Progress
-
-
-def cmd_trajectory(args, session: Session) -> int:
-    precision = _precision(args.precision)
-    if args.model in COULOMB_NAMES:
-        return _coulomb_trajectory(args, session, precision)
-    if args.model not in ALL_NAMES:
-        raise UsageError(f"unknown model {args.model!r}; allowed: {', '.join(ALL_NAMES)}")
-    if args.equations not in sources(args.model):
-        raise UsageError(f"--equations {_shown(args.equations)} for model {args.model!r}; allowed: {', '.join(sources(args.model))}")
-    state, params = _numeric_pairs(args.state, "state"), _numeric_pairs(args.param, "param")
-    t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
-    tol = None if args.tol is None else _positive(args.tol, "--tol", "1e-15 (the Taylor tolerance; default: the precision's epsilon)")
-    n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)  # at least the start and t_end
-    friction = None if args.friction is None else _positive(args.friction, "--friction", "0.5 (a friction coefficient)")
-    if getattr(args, "velocity", None) is not None:
-        raise UsageError(f"--velocity is for the rolling-and-sliding bodies ({', '.join(COULOMB_NAMES)}); "
-                         f"{args.model!r} rolls without slipping, its centre's velocity follows from the state")
-    model = get_model(args.model, args.equations)
-    show = args.progress if args.progress is not None else args.format == "text"
-    bar = _Progress(sys.stderr, f"trajectory {args.model}", t_end, show)
-    with bar:
-        try:
-            sol = solve(model, t_end, state, params, precision=precision, tol=tol, n_eval=n_eval,
-                        high_accuracy=args.high_accuracy, progress=bar.update, friction=friction)
-        except ValueError as err:
-            raise UsageError(str(err)) from None
-        except IntegrationError as err:  # the run up to its failure, if the integrator kept it, then exit 1
-            if err.trajectory is not None:
-                record = trajectory_record(err.trajectory)
-                record["outcome"] = err.outcome
-                session.emit(_dumps(record) if args.format == "json" else _text(record))
-            raise RunFailed(str(err)) from None
-    record = trajectory_record(sol)
-    failure = _not_ok(sol, model)
-    if failure is not None and record["outcome"] in ("ok",):
-        # the integrator's own names for these (verify.engine.single.FAILURES)
-        record["outcome"] = "failed:event_detection" if "domain" in failure else "failed:non_finite"
-    session.emit(_dumps(record) if args.format == "json" else _text(record))
-    if failure is not None:
-        raise RunFailed(failure)
-    return 0
-
-
-def _coulomb_trajectory(args, session: Session, precision) -> int:
-    """``trajectory disk+coulomb|ring+coulomb --friction MU [--velocity VX,VY]``: phases, switches, E + W."""
-    from ..engine import hybrid
-
-    if args.friction is None:
-        raise UsageError(f"{args.model} needs --friction MU (the Coulomb coefficient, >= 0)")
-    if args.equations != "derived" or args.tol is not None or args.high_accuracy:
-        raise UsageError(f"{args.model} takes the derived equations at the precision's epsilon only "
-                         "(no --equations paper, --tol, --high-accuracy)")
-    state, params = _numeric_pairs(args.state, "state"), _numeric_pairs(args.param, "param")
-    t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
-    n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)
-    friction = _decimal(args.friction, "--friction", "0.5 (a Coulomb coefficient >= 0)")
-    if friction.startswith("-") and any(c in "123456789" for c in friction):
-        raise UsageError(f"--friction {friction!r}: allowed a Coulomb coefficient >= 0 such as 0.5")
-    velocity = None
-    if args.velocity is not None:
-        velocity = args.velocity.split(",")
-        if len(velocity) != 2:
-            raise UsageError(f"--velocity {_shown(args.velocity)}; allowed: two numbers VX,VY")
-        velocity = [_decimal(v, "--velocity VX,VY") for v in velocity]
-    try:
-        sol = hybrid.solve(args.model, t_end, state, params, friction=friction, velocity=velocity,
-                           precision=precision, n_eval=n_eval)
-        failed = None
-    except ValueError as err:
-        raise UsageError(str(err)) from None
-    except IntegrationError as err:
-        if err.trajectory is None or len(err.trajectory.t) == 0:
-            raise RunFailed(f"{err} ({err.outcome})") from None
-        sol, failed = err.trajectory, err
-    p = sol.precision
-    record = {
-        "model": sol.model, "precision": p.name, "params": {k: p.to_json(v) for k, v in sol.params.items()},
-        "outcome": failed.outcome if failed is not None else sol.outcome, "message": str(failed or sol.message),
-        "phases": [{"kind": ph.kind, "t_start": p.to_json(ph.t_start), "t_end": p.to_json(ph.t_end), "ended": ph.ended}
-                   for ph in sol.phases if ph.t_end is not None],
-        "switch_times": [p.to_json(t) for t in sol.switch_times if t is not None],
-        "t": p.to_json(sol.t[-1]), "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
-        "energy_plus_work_drift_in_eps": sol.energy_plus_work_drift_in_eps,
-    }
-    if args.format == "json":
-        session.emit(_dumps(record))
-    else:
-        lines = [f"{record['model']} ({record['precision']}), mu = {record['params']['mu']}: {record['outcome']}"]
-        lines += [f"  {ph['kind']:<8} {ph['t_start']} -> {ph['t_end']}  ({ph['ended']})" for ph in record["phases"]]
-        lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
-        lines.append(f"  E + W drift: {record['energy_plus_work_drift_in_eps']:.3g} eps of E's term scale")
-        if failed is not None:
-            lines.append(f"  {record['message']}")
-        session.emit("\n".join(lines))
-    if failed is not None:
-        raise RunFailed(str(failed))
-    return 0
+from .arguments import _DECIMAL, RunFailed, UsageError, _decimal, _numeric_pairs, _positive, _positive_int, _shown
+from .output import _dumps
 
 
 # --- the other commands -------------------------------------------------------------------------
 
 def cmd_models(args, session: Session) -> int:
+    """The models from :mod:`models.catalogue` (plain data, checked against the derivation by the tests)."""
+    from models.catalogue import ALIASES, COULOMB_NAMES, ENTRIES
+
     records = []
-    for name in ALL_NAMES:
-        m = get_model(name)
+    for e in ENTRIES:
         records.append({
-            "model": name,
-            "title": m.title,
-            "equations": list(sources(name)),
-            "parameters": {p.name: {"default": str(p.default), "range": p.allowed(), "description": p.description}
-                           for p in m.parameters},
-            "domain": f"{m.domain.theta_min} < theta < {m.domain.theta_max}",
-            "invariants": list(m.invariant_names()),
-            "energy_unit": m.units,
+            "model": e.name,
+            "title": e.title,
+            "equations": list(e.equations),
+            "parameters": {name: {"default": default, "range": allowed, "description": text}
+                           for name, default, allowed, text in e.parameters},
+            "domain": f"{e.domain[0]} < theta < {e.domain[1]}",
+            "invariants": list(e.invariants),
+            "energy_unit": e.inertia_unit,
+            "length_unit": e.length_unit,
         })
+    aliases = {name: {"model": model, "params": params} for name, (model, params) in ALIASES.items()}
+    coulomb = {name: f"the {name.split('+')[0]} rolling and sliding with Coulomb friction (--friction MU)"
+               for name in COULOMB_NAMES}
     if args.format == "json":
-        session.emit(_dumps(records))
+        session.emit(_dumps({"models": records, "aliases": aliases, "coulomb": coulomb}))
         return 0
     lines = []
     for r in records:
         lines.append(f"{r['model']}: {r['title']} (equations: {', '.join(r['equations'])})")
         for pname, p in r["parameters"].items():
             lines.append(f"    {pname:<3} default {p['default']:<28} range {p['range']:<12} {p['description']}")
-        lines.append(f"    domain {r['domain']}; invariants: {', '.join(r['invariants'])}; energy per {r['energy_unit']}")
+        lines.append(f"    domain {r['domain']}; invariants: {', '.join(r['invariants'])}; lengths in {r['length_unit']}, "
+                     f"energy per {r['energy_unit']} (in {r['energy_unit']}/s^2)")
+    for name, a in aliases.items():
+        lines.append(f"{name}: the {a['model']} with {', '.join(f'{k} = {v}' for k, v in a['params'].items())}")
+    for name, text in coulomb.items():
+        lines.append(f"{name}: {text}")
+    lines.append("units: time s, angles rad, lengths in R (or the ball radius a), g/L = 980 s^-2 by default "
+                 "(g = 980 cm/s^2, L = 1 cm); in SI: --param g=9.81 with L = 1 m")
+    lines.append("next: python -m verify trajectory disk --plot run.png   (a model's default start; "
+                 "python -m verify starts lists named starts)")
     session.emit("\n".join(lines))
+    return 0
+
+
+def cmd_starts(args, session: Session) -> int:
+    """The named starts: every figure panel's and every reference case's (:mod:`verify.starts`)."""
+    from ..starts import DEFAULT_CASES, all_starts
+
+    starts = all_starts()
+    if args.format == "json":
+        session.emit(_dumps([{"name": s.name, "kind": s.kind, "model": s.model, "params": s.params, "state": s.state,
+                              "t_end": s.t_end, "source": s.source, "note": s.note} for s in starts]))
+        return 0
+    lines = []
+    for kind, heading in (("figure", "figure starts (the report's runs of the paper's captions)"),
+                          ("reference", "reference cases (reports/reference: proved and agreeing digits)")):
+        group = [s for s in starts if s.kind == kind]
+        if not group:
+            continue
+        lines.append(f"{heading}:")
+        for s in group:
+            state = ", ".join(f"{k} = {_brief(v)}" for k, v in s.state.items())
+            lines.append(f"  {s.name:<24} {s.model:<12} t_end {s.t_end:>4} s  {state}")
+    lines.append("defaults (a model run without --start or --state): "
+                 + ", ".join(f"{m} -> {c}" for m, c in DEFAULT_CASES.items()))
+    lines.append("next: python -m verify trajectory --start fig5-lhs --output run.csv --plot run.png")
+    session.emit("\n".join(lines))
+    return 0
+
+
+def _brief(text: str) -> str:
+    """A start value shortened for the listing (the run uses every digit)."""
+    try:
+        value = float(text)
+    except ValueError:
+        return text
+    return text if len(text) <= 10 else f"{value:.6g}"
+
+
+def cmd_plot(args, session: Session) -> int:
+    """``plot RUN --out FILE``: the picture of a saved run (:mod:`verify.series.plot`)."""
+    from ..series.files import RunFileError, read_run
+    from ..series.plot import picture_path, write_plot
+
+    try:
+        out = picture_path(args.out, "--out")
+        columns = read_run(args.run_file)
+    except RunFileError as err:
+        raise UsageError(str(err)) from None
+    write_plot(columns, out)
+    session.emit(f"wrote {out} ({columns.meta.get('model')}, {len(columns.values['t'])} points, "
+                 f"{columns.meta.get('outcome')})")
     return 0
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 import json
 import math
 
-from models.symbols import STATE_NAMES
+from models.catalogue import STATE_NAMES
 
 
 def trajectory_record(sol) -> dict:
@@ -24,6 +24,30 @@ def trajectory_record(sol) -> dict:
         "friction_required": _friction(p, sol),
         "friction": None if sol.friction is None else p.to_json(sol.friction),
     }
+
+
+def coulomb_record(sol, failed=None) -> dict:
+    """The JSON object of a Coulomb run (``trajectory disk+coulomb|ring+coulomb``): phases, switches, E + W."""
+    p = sol.precision
+    return {
+        "model": sol.model, "precision": p.name, "params": {k: p.to_json(v) for k, v in sol.params.items()},
+        "outcome": failed.outcome if failed is not None else sol.outcome, "message": str(failed or sol.message),
+        "phases": [{"kind": ph.kind, "t_start": p.to_json(ph.t_start), "t_end": p.to_json(ph.t_end), "ended": ph.ended}
+                   for ph in sol.phases if ph.t_end is not None],
+        "switch_times": [p.to_json(t) for t in sol.switch_times if t is not None],
+        "t": p.to_json(sol.t[-1]), "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(STATE_NAMES)},
+        "energy_plus_work_drift_in_eps": sol.energy_plus_work_drift_in_eps,
+    }
+
+
+def coulomb_text(record: dict) -> str:
+    lines = [f"{record['model']} ({record['precision']}), mu = {record['params']['mu']}: {record['outcome']}"]
+    lines += [f"  {ph['kind']:<8} {ph['t_start']} -> {ph['t_end']}  ({ph['ended']})" for ph in record["phases"]]
+    lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
+    lines.append(f"  E + W drift: {record['energy_plus_work_drift_in_eps']:.3g} eps of E's term scale")
+    if not str(record["outcome"]).startswith(("ok", "event:")):
+        lines.append(f"  {record['message']}")
+    return "\n".join(lines)
 
 
 def _friction(p, sol) -> dict | None:

@@ -3,15 +3,14 @@ from __future__ import annotations
 
 import argparse
 
-from models import ALL_NAMES, COULOMB_NAMES
-from models.symbols import STATE_NAMES
-
-from .arguments import MP_MIN_BITS, N_EVAL_MAX, UsageError
-from .commands import (cmd_bench, cmd_models, cmd_reference, cmd_report, cmd_score, cmd_spindown, cmd_sweep,
-                       cmd_threshold, cmd_trajectory)
+from .arguments import UsageError
+from .commands import (cmd_bench, cmd_models, cmd_plot, cmd_reference, cmd_report, cmd_score, cmd_spindown, cmd_starts,
+                       cmd_sweep, cmd_threshold)
+from .run_command import add_trajectory_parser
 
 #: --help's first line
-DESCRIPTION = "Command line: ``python -m verify {trajectory,models,threshold,spindown,reference,score,sweep,report,bench} ...``."
+DESCRIPTION = ("Bodies rolling on a plane, verified.  First steps: 'python -m verify trajectory disk --plot run.png', "
+               "'python -m verify starts', 'python -m verify figure --list'.")
 
 # --- the parser -------------------------------------------------------------------------------
 
@@ -28,27 +27,16 @@ def parser() -> argparse.ArgumentParser:
                     help="show the Python traceback of an unexpected error (may be given anywhere on the line)")
     sub = ap.add_subparsers(dest="command", required=True)
 
-    t = sub.add_parser("trajectory", help="integrate one model from one state")
-    t.add_argument("model", help=f"one of: {', '.join(ALL_NAMES + COULOMB_NAMES)}")
-    t.add_argument("--equations", default="derived", help="derived (default) or paper")
-    t.add_argument("--param", action="append", metavar="NAME=VALUE", help="a parameter (repeatable)")
-    t.add_argument("--state", action="append", metavar="NAME=VALUE",
-                   help=f"an initial value, unset ones are 0 (names: {', '.join(STATE_NAMES)})")
-    t.add_argument("--t-end", required=True, help="final time in seconds")
-    t.add_argument("--precision", default="double",
-                   help=f"double (default), long, quad or mp:BITS (MPFR, BITS >= {MP_MIN_BITS})")
-    t.add_argument("--tol", default=None, help="Taylor tolerance (default: the precision's epsilon)")
-    t.add_argument("--n-eval", default="101", help=f"output points from 0 to t_end (default 101; 2 to {N_EVAL_MAX})")
-    t.add_argument("--friction", default=None, metavar="MU",
-                   help="a friction coefficient: stop at the event slips where the rolling motion needs more")
-    t.add_argument("--velocity", default=None, metavar="VX,VY",
-                   help="disk+coulomb, ring+coulomb: the centre of mass's horizontal velocity at t = 0 (default: rolling)")
-    t.add_argument("--high-accuracy", action="store_true",
-                   help="heyoka's compensated summation: energy error ~ t^0.5 over 1e6 steps (python -m verify bench)")
-    t.add_argument("--format", choices=("json", "text"), default="text")
-    t.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress on stderr once a second after the first two (default: on with --format text, off with json)")
-    t.set_defaults(run=cmd_trajectory)
+    add_trajectory_parser(sub)
+
+    pl = sub.add_parser("plot", help="draw a saved run (a file of 'trajectory --output')")
+    pl.add_argument("run_file", metavar="RUN", help="RUN.csv, RUN.json or RUN.npz written by 'trajectory --output'")
+    pl.add_argument("--out", required=True, metavar="FILE", help="the picture: FILE.png, FILE.svg or FILE.pdf")
+    pl.set_defaults(run=cmd_plot)
+
+    st = sub.add_parser("starts", help="list the named starts (--start NAME): every figure's and reference case's")
+    st.add_argument("--format", choices=("json", "text"), default="text")
+    st.set_defaults(run=cmd_starts)
 
     m = sub.add_parser("models", help="list the models, their parameters and invariants")
     m.add_argument("--format", choices=("json", "text"), default="text")

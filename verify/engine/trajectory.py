@@ -8,19 +8,8 @@ import numpy as np
 from models.symbols import STATE_NAMES
 
 from . import invariants as inv
+from .errors import IntegrationError  # noqa: F401  (re-exported: where a run's failure has always been imported from)
 from ..precision import Precision
-
-
-class IntegrationError(RuntimeError):
-    """The integration failed; ``outcome`` says how (one of :data:`verify.engine.failures.FAILURES`).
-
-    ``t`` and ``state`` are where the failure was seen; ``trajectory`` is the run up to its last
-    valid output (a :class:`Trajectory` with that outcome and ``status = -1``), or None.
-    """
-
-    def __init__(self, message: str, outcome: str = "failed", t=None, state=None, trajectory=None):
-        super().__init__(message)
-        self.outcome, self.t, self.state, self.trajectory = outcome, t, state, trajectory
 
 
 @dataclass(frozen=True)

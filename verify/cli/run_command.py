@@ -1,0 +1,294 @@
+"""``trajectory``: one run from a model and a start, printed, kept (``--output``) and drawn (``--plot``).
+
+The run's options are shared with ``animate`` (:func:`add_run_options`, :func:`read_request`,
+:func:`run`): a model (or an alias such as ``hoop``), a named start (``--start fig5-lhs``, a
+reference case, or the model's default when nothing is given), ``--state``/``--param`` values that
+may be expressions (``pi/2``), and the end time.  Output files are checked before the run (their
+folder must exist) and written atomically after it.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import dataclass
+
+from models.catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES, STATE_NAMES
+
+from ..guard import Session
+from .arguments import (N_EVAL_MAX, RunFailed, UsageError, _decimal, _positive, _positive_int, _precision, _shown,
+                        _value_pairs)
+
+MODEL_CHOICES = ALL_NAMES + COULOMB_NAMES + tuple(ALIASES)
+#: output points when the run is kept or drawn and --n-eval is not given (a smooth curve, a frame per point)
+N_EVAL_KEPT = 2001
+
+
+def add_run_options(p: argparse.ArgumentParser) -> None:
+    """The options that say which run: model, start, state, parameters, time, precision."""
+    p.add_argument("model", nargs="?", default=None,
+                   help=f"one of: {', '.join(MODEL_CHOICES)} (optional with --start)")
+    p.add_argument("--start", default=None, metavar="NAME",
+                   help="a named start: a figure's (fig5-lhs) or a reference case's (disk-standard-1); "
+                        "'python -m verify starts' lists them.  Without --start and --state: the model's default start")
+    p.add_argument("--state", action="append", metavar="NAME=VALUE",
+                   help=f"an initial value, overriding the start's (names: {', '.join(STATE_NAMES)}); values may be "
+                        "expressions such as pi/2 - 0.05 or sqrt(980/1.25); unset ones are 0 when no --start is given")
+    p.add_argument("--param", action="append", metavar="NAME=VALUE", help="a parameter (repeatable; expressions allowed)")
+    p.add_argument("--t-end", default=None, help="final time in seconds (default: the start's)")
+    p.add_argument("--equations", default="derived", help="derived (default) or paper")
+    p.add_argument("--precision", default="double", help="double (default), long, quad or mp:BITS (MPFR, BITS >= 53)")
+    p.add_argument("--friction", default=None, metavar="MU",
+                   help="a friction coefficient: rolling models stop at the event slips where the motion needs more; "
+                        "disk+coulomb and ring+coulomb roll and slide with it")
+    p.add_argument("--velocity", default=None, metavar="VX,VY",
+                   help="disk+coulomb, ring+coulomb: the centre of mass's horizontal velocity at t = 0 (default: rolling)")
+
+
+@dataclass(frozen=True)
+class RunRequest:
+    """What to run, read from the command line (values as text or exact sympy numbers)."""
+
+    model: str
+    equations: str
+    params: dict
+    state: dict
+    t_end: str
+    friction: object
+    velocity: object
+    start: str  # how the start was chosen, in words (printed and kept in the files)
+    given: dict  # the options as typed (kept in the files' metadata)
+
+
+def read_request(args) -> RunRequest:
+    """The run the options ask for (bad input: :class:`UsageError`).
+
+    The start's values come first (a named start, or the model's default when neither --start nor
+    --state is given), then --param and --state override them one by one.
+    """
+    from .. import starts
+
+    state, params = _value_pairs(args.state, "state"), _value_pairs(args.param, "param")
+    typed = args.model
+    if typed is not None and typed not in MODEL_CHOICES:
+        raise UsageError(f"unknown model {typed!r}; allowed: {', '.join(MODEL_CHOICES)}")
+    model, fixed = ALIASES.get(typed, (typed, {}))
+    for name, value in fixed.items():
+        if name in params and not _same_number(params[name], value):
+            raise UsageError(f"--param {name}={params[name]}: {typed!r} is the {model} with {name} = {value}; "
+                             f"use the model {model!r} for another {name}")
+    if args.start is not None:
+        try:
+            start = starts.find(args.start)
+        except KeyError as err:
+            raise UsageError(str(err.args[0])) from None
+        if model is not None and model.split("+")[0] != start.model:
+            raise UsageError(f"--start {args.start} is a start of the model {start.model!r}, not {typed!r}; "
+                             f"drop the model or give {start.model!r}")
+        how = f"--start {start.name} ({start.source})"
+    elif typed is None:
+        raise UsageError("give a model (python -m verify models lists them) or --start NAME "
+                         "(python -m verify starts lists them)")
+    elif not state:
+        start = starts.default_start(typed)
+        how = f"the default start of {typed}: {start.note}"
+    else:
+        start = None
+        how = "--state as given, unset components 0"
+    model = model or start.model
+    values = {"params": {}, "state": {}}
+    t_end, friction = None, None
+    if start is not None:
+        for group, given in (("params", start.params), ("state", start.state)):
+            for name, text in given.items():
+                values[group][name] = _start_value(text, f"start {start.name}: {name}")
+        t_end, friction = start.t_end, start.friction
+    values["params"].update(fixed)
+    values["params"].update(params)
+    values["state"].update(state)
+    if args.t_end is not None:
+        t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
+    if t_end is None:
+        raise UsageError("--t-end is needed with --state and no --start (e.g. --t-end 2, in seconds)")
+    if args.friction is not None:
+        friction = args.friction
+    given = {"model": typed, "start": args.start, "state": {k: str(v) for k, v in state.items()},
+             "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end, "friction": args.friction}
+    return RunRequest(model, args.equations, values["params"], values["state"], str(t_end), friction, args.velocity,
+                      how, given)
+
+
+def _start_value(text: str, what: str):
+    """A stored start value (a decimal, an exact fraction such as 16720/33489, an expression) read exactly."""
+    from ..expressions import read_value
+
+    return read_value(text, what)
+
+
+def _same_number(a, b) -> bool:
+    from ..expressions import read_value
+
+    return read_value(str(a)) == read_value(str(b)) or float(read_value(str(a))) == float(read_value(str(b)))
+
+
+def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
+    """(solution, failure message or None): the run, or the part of it before a named failure.
+
+    A rolling model goes through :func:`verify.engine.single.solve`, a Coulomb body through
+    :func:`verify.engine.hybrid.solve`.  Bad input (a state outside the domain, a parameter out of
+    range) is a :class:`UsageError`; a run that fails with nothing to show is :class:`RunFailed`.
+    """
+    from ..engine.errors import IntegrationError
+    from .progress import _Progress
+
+    precision = _precision(args.precision)
+    tol = getattr(args, "tol", None)
+    if request.model in COULOMB_NAMES:
+        if request.friction is None:
+            raise UsageError(f"{request.model} needs --friction MU (the Coulomb coefficient, >= 0)")
+        if request.equations != "derived" or tol is not None or getattr(args, "high_accuracy", False):
+            raise UsageError(f"{request.model} takes the derived equations at the precision's epsilon only "
+                             "(no --equations paper, --tol, --high-accuracy)")
+        friction = _decimal(request.friction, "--friction", "0.5 (a Coulomb coefficient >= 0)")
+        if friction.startswith("-") and any(c in "123456789" for c in friction):
+            raise UsageError(f"--friction {friction!r}: allowed a Coulomb coefficient >= 0 such as 0.5")
+        velocity = None
+        if request.velocity is not None:
+            velocity = request.velocity.split(",")
+            if len(velocity) != 2:
+                raise UsageError(f"--velocity {_shown(request.velocity)}; allowed: two numbers VX,VY")
+            velocity = [_decimal(v, "--velocity VX,VY") for v in velocity]
+        from ..engine import hybrid
+
+        try:
+            return hybrid.solve(request.model, request.t_end, request.state, request.params, friction=friction,
+                                velocity=velocity, precision=precision, n_eval=n_eval), None
+        except ValueError as err:
+            raise UsageError(str(err)) from None
+        except IntegrationError as err:
+            if err.trajectory is None or len(err.trajectory.t) == 0:
+                raise RunFailed(f"{err} ({err.outcome})") from None
+            return err.trajectory, err
+    from models import get_model, sources
+
+    from ..engine.single import solve
+
+    if request.velocity is not None:
+        raise UsageError(f"--velocity is for the rolling-and-sliding bodies ({', '.join(COULOMB_NAMES)}); "
+                         f"{request.model!r} rolls without slipping, its centre's velocity follows from the state")
+    if request.equations not in sources(request.model):
+        raise UsageError(f"--equations {_shown(request.equations)} for model {request.model!r}; "
+                         f"allowed: {', '.join(sources(request.model))}")
+    if tol is not None:
+        tol = _positive(tol, "--tol", "1e-15 (the Taylor tolerance; default: the precision's epsilon)")
+    friction = None if request.friction is None else _positive(request.friction, "--friction",
+                                                                "0.5 (a friction coefficient)")
+    model = get_model(request.model, request.equations)
+    show = args.progress if getattr(args, "progress", None) is not None else getattr(args, "format", "text") == "text"
+    bar = _Progress(sys.stderr, label, request.t_end, show)
+    with bar:
+        try:
+            sol = solve(model, request.t_end, request.state, request.params, precision=precision, tol=tol,
+                        n_eval=n_eval, high_accuracy=getattr(args, "high_accuracy", False), progress=bar.update,
+                        friction=friction)
+        except ValueError as err:
+            raise UsageError(str(err)) from None
+        except IntegrationError as err:  # the run up to its failure, if the integrator kept it
+            if err.trajectory is None:
+                raise RunFailed(str(err)) from None
+            return err.trajectory, err
+    return sol, None
+
+
+def add_trajectory_parser(sub) -> None:
+    t = sub.add_parser("trajectory", help="integrate one model from one start; print, keep (--output) and draw (--plot) it",
+                       description="Integrate one model from one start.  Examples: 'trajectory disk' (its default start), "
+                                   "'trajectory --start fig5-lhs --output run.csv --plot run.png', "
+                                   "'trajectory hoop --state theta=pi/2-0.05 --state phidot=30 --t-end 5'.")
+    add_run_options(t)
+    t.add_argument("--tol", default=None, help="Taylor tolerance (default: the precision's epsilon)")
+    t.add_argument("--n-eval", default=None,
+                   help=f"output points from 0 to t_end (default 101, or {N_EVAL_KEPT} with --output or --plot; "
+                        f"2 to {N_EVAL_MAX})")
+    t.add_argument("--high-accuracy", action="store_true",
+                   help="heyoka's compensated summation: energy error ~ t^0.5 over 1e6 steps (python -m verify bench)")
+    t.add_argument("--output", default=None, metavar="FILE",
+                   help="keep the whole run: FILE.csv, FILE.json or FILE.npz (t, the state, invariants, N/(Mg), mu_req, "
+                        "with units; every digit)")
+    t.add_argument("--plot", default=None, metavar="FILE",
+                   help="draw the run: FILE.png, FILE.svg or FILE.pdf (path, theta, phi, omega3, energy, normal force)")
+    t.add_argument("--format", choices=("json", "text"), default="text")
+    t.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
+                   help="progress on stderr once a second after the first two (default: on with --format text, off with json)")
+    t.set_defaults(run=cmd_trajectory)
+
+
+def cmd_trajectory(args, session: Session) -> int:
+    from ..series.files import RunFileError, output_path
+    from ..series.plot import picture_path
+
+    request = read_request(args)
+    try:  # before the run: nothing is computed for a file that cannot be written
+        out = None if args.output is None else output_path(args.output)
+        picture = None if args.plot is None else picture_path(args.plot)
+    except RunFileError as err:
+        raise UsageError(str(err)) from None
+    kept = out is not None or picture is not None
+    n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2) if args.n_eval is not None else (
+        N_EVAL_KEPT if kept else 101)
+    _precision(args.precision)
+    sol, failure = run(request, args, session, n_eval, f"trajectory {request.model}")
+    from .output import _dumps, _not_ok, coulomb_record, coulomb_text, trajectory_record, _text
+
+    hybrid = hasattr(sol, "phases")
+    if hybrid:
+        record = coulomb_record(sol, failure)
+    else:
+        record = trajectory_record(sol)
+        if failure is not None:
+            record["outcome"] = failure.outcome
+        else:
+            from models import get_model
+
+            reason = _not_ok(sol, get_model(request.model, request.equations))
+            if reason is not None and record["outcome"] == "ok":
+                record["outcome"] = "failed:event_detection" if "domain" in reason else "failed:non_finite"
+            failure = reason
+    record["start"] = request.start
+    written = _keep(sol, request, out, picture)
+    record["files"] = [str(p) for p in written]
+    if args.format == "json":
+        session.emit(_dumps(record))
+    else:
+        text = coulomb_text(record) if hybrid else _text(record)
+        lines = [text, f"start       {request.start}"]
+        lines += [f"wrote       {p}" for p in written]
+        lines.append(_next_step(args, request, out))
+        session.emit("\n".join(lines))
+    if failure is not None:
+        raise RunFailed(str(failure))
+    return 0
+
+
+def _keep(sol, request: RunRequest, out, picture) -> list:
+    """Write the run's file and picture (each atomically); returns the paths written."""
+    if out is None and picture is None:
+        return []
+    from ..series import run_columns, write_run
+    from ..series.plot import write_plot
+
+    columns = run_columns(sol, {"start_chosen": request.start, "given": request.given})
+    written = []
+    if out is not None:
+        written.append(write_run(columns, out))
+    if picture is not None:
+        written.append(write_plot(columns, picture))
+    return written
+
+
+def _next_step(args, request: RunRequest, out) -> str:
+    """One line pointing to what a person might do next with this run."""
+    if out is not None:
+        return (f"next        python -m verify plot {out} --out run.png   |   "
+                f"python -m verify animate {out} --out run.gif")
+    start = f"--start {args.start}" if args.start else (args.model or request.model)
+    return f"next        python -m verify trajectory {start} --output run.csv --plot run.png"
