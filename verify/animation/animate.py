@@ -181,7 +181,7 @@ def animate(runs, out, *, speed=None, fps=25, width_px=640, max_seconds=20.0) ->
         else:
             with rc_context({"animation.embed_limit": 1e4}):  # MB; the default 20 drops frames silently
                 html = anim.to_jshtml(fps=fps, default_mode="once")
-            Path(temp).write_text(_reproducible_html(html), encoding="utf-8")
+            Path(temp).write_text(_offline_html(html), encoding="utf-8")
         os.replace(temp, path)
     except BaseException:
         Path(temp).unlink(missing_ok=True)
@@ -190,10 +190,25 @@ def animate(runs, out, *, speed=None, fps=25, width_px=640, max_seconds=20.0) ->
     return AnimationRecord(path, n, float(fps), clock.speed, clock.raised, clock.rule, (width, height))
 
 
-def _reproducible_html(html: str) -> str:
-    """The jshtml page with matplotlib's random element id (uuid4) replaced by a hash of the page."""
+#: matplotlib's jshtml draws its buttons with Font Awesome from a CDN; offline they are these characters.
+BUTTON_TEXT = {"fa-fast-backward": "&#x23EE;", "fa-step-backward": "&#x23F4;|", "fa-play fa-flip-horizontal": "&#x25C0;",
+               "fa-pause": "&#x23F8;", "fa-play": "&#x25B6;", "fa-step-forward": "|&#x23F5;",
+               "fa-fast-forward": "&#x23ED;", "fa-minus": "&#x2212;", "fa-plus": "+"}
+
+
+def _offline_html(html: str) -> str:
+    """The jshtml page made offline and reproducible: the stylesheet link to the icon CDN removed
+    and the icons written as characters; matplotlib's random element id (uuid4) replaced by a
+    hash of the page.  A remote reference left (a newer matplotlib) raises AnimationError."""
     import hashlib
 
+    html = re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)
+    for icon, text in BUTTON_TEXT.items():
+        html = html.replace(f'<i class="fa {icon}"></i>', text)
+    remote = re.search(r"""(?:src|href)\s*=\s*["']?(?:https?:)?//[^"'\s>]+""", html)
+    if remote:
+        raise AnimationError(f"matplotlib's HTML page loads {remote.group(0)!r}; allowed: an offline page "
+                             "(write .gif instead)")
     ids = set(re.findall(r"_anim_img([0-9a-f]{32})", html))
     for old in ids:
         new = hashlib.sha256(html.replace(old, "").encode()).hexdigest()[:32]
