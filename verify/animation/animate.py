@@ -75,7 +75,7 @@ def _time_text(t: float, step: float) -> str:
     return f"{t:.{decimals}f}"
 
 
-def build(runs, *, speed=None, fps=25, width_px=640, max_seconds=20.0):
+def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
     """The figure, panels and clock of an animation, not yet written (for :func:`animate` and tests).
 
     Returns
@@ -119,7 +119,7 @@ def build(runs, *, speed=None, fps=25, width_px=640, max_seconds=20.0):
     return fig, panels, clock, draw
 
 
-def animate(runs, out, *, speed=None, fps=25, width_px=640, max_seconds=20.0) -> AnimationRecord:
+def animate(runs, out, *, speed=None, fps=25, width_px=480, max_seconds=20.0) -> AnimationRecord:
     """Animate ``runs`` side by side (one panel each, one shared clock) into the file ``out``.
 
     Parameters

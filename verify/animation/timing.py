@@ -7,7 +7,7 @@ round at the body's angular speed |omega|, with omega = (thetadot, phidot sin(th
 phidot cos(theta) + psidot) in (e1, e2, e3) (paper Eq. 16).  The default speed is the one at
 which the largest |omega| of the run is one turn per second of animation,
 
-    speed = min(1, 2 pi / max |omega|), rounded down to 1, 2 or 5 times a power of ten,
+    speed = min(1, 2 pi / max |omega|), rounded down to two significant digits,
 
 never faster than real time when the body is slow.  A run whose animation would then last
 longer than ``max_seconds`` is sped up to fit: ``speed = duration / max_seconds``, rounded up
@@ -124,11 +124,11 @@ def clock(runs_arrays: list, fps: float, speed, max_seconds: float) -> Clock:
 
 
 def nice(value: float, down: bool) -> float:
-    """``value`` rounded down (or up) to 1, 2 or 5 times a power of ten, so the stated factor reads
-    simply (0.2x rather than 0.209x)."""
-    exponent = np.floor(np.log10(value))
-    steps = np.array([1.0, 2.0, 5.0, 10.0]) * 10.0 ** exponent
-    return float(steps[steps <= value * (1 + 1e-12)].max() if down else steps[steps >= value * (1 - 1e-12)].min())
+    """``value`` rounded down (or up) to two significant digits, so the stated factor reads simply
+    (0.19x rather than 0.1973x) and moves the rule by at most 10 %."""
+    scale = 10.0 ** (np.floor(np.log10(value)) - 1)
+    units = value / scale
+    return float((np.floor(units * (1 + 1e-12)) if down else np.ceil(units * (1 - 1e-12))) * scale)
 
 
 def states_at(arrays: dict, times: np.ndarray) -> dict:
