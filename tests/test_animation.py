@@ -5,6 +5,7 @@ Runs here are synthetic (closed-form angles on a dense grid), so no model is int
 from __future__ import annotations
 
 import io
+import os
 import re
 import shutil
 import warnings
@@ -186,6 +187,9 @@ def test_gif_frames_and_size(tmp_path):
         assert im.n_frames == rec.frames  # every frame differs (the body moves)
         assert sum(durations) == rec.frames * 40
     assert [p.name for p in tmp_path.iterdir()] == ["a.gif"]  # no temporary left
+    umask = os.umask(0)
+    os.umask(umask)
+    assert out.stat().st_mode & 0o777 == 0o666 & ~umask  # an ordinary file's mode, not mkstemp's 0600
 
 
 def test_gif_is_reproducible(tmp_path):

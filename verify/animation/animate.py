@@ -182,6 +182,9 @@ def animate(runs, out, *, speed=None, fps=25, width_px=480, max_seconds=20.0) ->
             with rc_context({"animation.embed_limit": 1e4}):  # MB; the default 20 drops frames silently
                 html = anim.to_jshtml(fps=fps, default_mode="once")
             Path(temp).write_text(_offline_html(html), encoding="utf-8")
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(temp, 0o666 & ~umask)  # mkstemp made it 0600: give it an ordinary file's mode
         os.replace(temp, path)
     except BaseException:
         Path(temp).unlink(missing_ok=True)
