@@ -94,7 +94,7 @@ class Panel:
         ax.view_init(elev=ELEVATION, azim=AZIMUTH)
         ax.set_axis_off()
         ax.computed_zorder = False  # floor, then paths, then the body: the body is above the floor
-        ax.set_box_aspect((1, 1, max(self.top / span, 0.05)), zoom=1.3)
+        ax.set_box_aspect((1, 1, max(self.top / span, 0.05)), zoom=1.1)  # larger zooms clip the floor corner nearest the camera
         self._set_limits(self.middle)
 
     def _set_limits(self, middle) -> None:
