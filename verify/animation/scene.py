@@ -133,6 +133,13 @@ class Panel:
         self.body = ax.add_collection3d(Poly3DCollection(self.mesh.quads, linewidths=0.4, zorder=2))
         ax.set_title(label, fontsize=fontsize, pad=0)
 
+    def _inside(self, points: np.ndarray, k: int) -> np.ndarray:
+        """``points`` with those off the floor's window set to NaN (mplot3d does not clip lines)."""
+        if not self.follow:
+            return points
+        off = np.any(np.abs(points - self.centres[k, :2]) > self.span / 2, axis=1)
+        return np.where(off[:, None], np.nan, points)
+
     def update(self, k: int) -> list:
         """Move the artists to frame k; returns them (for matplotlib's animation)."""
         t = self.times[k]
@@ -144,10 +151,10 @@ class Panel:
         self.body.set_facecolor(colours)
         self.body.set_edgecolor(colours)  # edges in the face's colour: no seams between faces
         n = int(np.searchsorted(self.grid_t, t, side="right"))
-        path = np.concatenate([self.path[:n], self.frame_path[k:k + 1]])
+        path = self._inside(np.concatenate([self.path[:n], self.frame_path[k:k + 1]]), k)
         self.path_line.set_data_3d(path[:, 0], path[:, 1], np.zeros(len(path)))
         if self.trace is not None:
-            trace = np.concatenate([self.trace[:n], self.frame_trace[k:k + 1]])
+            trace = self._inside(np.concatenate([self.trace[:n], self.frame_trace[k:k + 1]]), k)
             self.trace_line.set_data_3d(trace[:, 0], trace[:, 1], np.zeros(len(trace)))
         if self.follow:
             middle = self.centres[k, :2]
