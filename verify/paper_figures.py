@@ -61,9 +61,10 @@ def figure_titles(paper: Path = PAPER_FILE) -> dict:
     return titles
 
 
-def read_results(path: Path = RESULTS_FILE) -> Optional[dict]:
-    """Claim id -> its results.json record, or None when the file does not exist (a malformed file raises)."""
-    path = Path(path)
+def read_results(path: Optional[Path] = None) -> Optional[dict]:
+    """Claim id -> its results.json record (default file: :data:`RESULTS_FILE`), or None when the file
+    does not exist (a malformed file raises)."""
+    path = Path(RESULTS_FILE if path is None else path)
     if not path.exists():
         return None
     try:
@@ -102,13 +103,14 @@ class FigureList:
     note: str
 
 
-def figure_list(results_path: Path = RESULTS_FILE) -> FigureList:
+def figure_list(results_path: Optional[Path] = None) -> FigureList:
     """Every figure 1..20 with its title, claims and verdicts (from results.json) and whether it has a run.
 
     Without results.json the claims are not known either (they would need the claim modules, which
     are slow to import): the figures are listed with their titles and runs, and the note says how
     to get the verdicts.
     """
+    results_path = Path(RESULTS_FILE if results_path is None else results_path)
     titles, results = figure_titles(), read_results(results_path)
     simulated = set(figures_with_runs())
     figures = []
@@ -228,7 +230,7 @@ def _panel(fig_data, side: Optional[str]):
                    runs=tuple(r for r in fig_data.runs if r.side == side))
 
 
-def make_figure(n, side: Optional[str] = None, results_path: Path = RESULTS_FILE) -> PaperFigure:
+def make_figure(n, side: Optional[str] = None, results_path: Optional[Path] = None) -> PaperFigure:
     """Evaluate the claims of paper figure ``n`` and draw its runs, as the report does.
 
     Parameters
@@ -238,8 +240,9 @@ def make_figure(n, side: Optional[str] = None, results_path: Path = RESULTS_FILE
     side : {None, "both", "lhs", "rhs"}
         ``"lhs"``/``"rhs"``: only that panel's claims (and the claims on the whole figure) and
         runs (controls and extra runs, which carry no side, are drawn only for the whole figure).
-    results_path : Path
-        The report's results.json, whose verdicts are compared with the computed ones.
+    results_path : Path, optional
+        The report's results.json (default :data:`RESULTS_FILE`), whose verdicts are compared
+        with the computed ones.
 
     Returns
     -------
@@ -253,6 +256,7 @@ def make_figure(n, side: Optional[str] = None, results_path: Path = RESULTS_FILE
 
     n = check_figure_number(n)
     side = check_side(n, side)
+    results_path = Path(RESULTS_FILE if results_path is None else results_path)
     stored = {k: r["verdict"] for k, r in (read_results(results_path) or {}).items()}
     records, images, mismatches = [], [], []
     for claim in _claims_of(n):
