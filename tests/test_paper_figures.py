@@ -91,6 +91,9 @@ def _check_made(fig: pf.PaperFigure, stored: dict):
         assert rec["quote"] == stored[rec["id"]]["quote"]
     for img in fig.images:
         assert img.data.startswith(PNG) and img.alt
+        drawn = ROOT / "reports" / "figures" / img.filename
+        if fig.side is None and drawn.exists():  # the report's own figure, byte for byte
+            assert img.data == drawn.read_bytes(), img.filename
 
 
 @needs_results

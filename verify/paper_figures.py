@@ -22,7 +22,7 @@ from typing import Optional
 
 import verify
 
-from .claims.base import PAPER_FILE
+from .claims.base import NOT_CHECKABLE, PAPER_FILE
 from .figure_starts import figures_with_runs, panel_sides, starts_of
 
 N_FIGURES = 20
@@ -298,6 +298,8 @@ def figure_text(fig: PaperFigure) -> str:
                            ("qualification", "qualification")):
             if rec.get(key):
                 lines.append(f"  {label}: {' '.join(str(rec[key]).split())}")
+        if rec["verdict"] == NOT_CHECKABLE and rec.get("detail"):
+            lines.append(f"  why: {' '.join(rec['detail'].split())}")
         lines.append("")
     if not fig.records:
         lines += ["(no claims)", ""]
