@@ -159,7 +159,10 @@ def fast_list_main(argv: list, out) -> Optional[int]:
         fmt = "json"
     else:
         return None
-    listing = figure_list()
+    try:
+        listing = figure_list()
+    except ValueError:  # a malformed results.json or paper: the full command line says so in one line
+        return None
     try:
         out.write((json.dumps(list_record(listing), indent=2) if fmt == "json" else list_text(listing)) + "\n")
         out.flush()

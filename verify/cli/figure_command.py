@@ -46,7 +46,10 @@ def cmd_figure(args, session) -> int:
     if args.list:
         if args.number is not None or args.side is not None or args.out is not None:
             raise UsageError("figure --list takes no figure number, --side or --out (only --format)")
-        listing = pf.figure_list()
+        try:
+            listing = pf.figure_list()
+        except ValueError as err:  # results.json or the paper is not what it should be
+            raise RunFailed(str(err)) from None
         session.emit(json.dumps(pf.list_record(listing), indent=2) if args.format == "json" else pf.list_text(listing))
         return 0
     if args.number is None:
@@ -62,6 +65,10 @@ def cmd_figure(args, session) -> int:
         side = pf.check_side(number, args.side)
     except ValueError as err:
         raise UsageError(f"--side {_shown(args.side)}: {str(err).split(': ', 1)[1]}") from None
+    try:
+        pf.read_results()  # a malformed results.json: one line, before the figure's runs
+    except ValueError as err:
+        raise RunFailed(str(err)) from None
     fig = pf.make_figure(number, side)
     written = _write(fig, folder)
     nxt = pf.next_step(fig)
