@@ -81,6 +81,7 @@ class RunData:
     y: tuple
     energy_drift: float  # max |E(t) - E(0)| / |E(0)| over the run (InvariantTrace.max_rel_drift)
     outcome: str
+    side: Optional[str] = None  # "lhs" or "rhs": the paper panel the run belongs to (None: a control, or one panel)
 
 
 @dataclass(frozen=True)

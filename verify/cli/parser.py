@@ -117,6 +117,10 @@ def parser() -> argparse.ArgumentParser:
     b.add_argument("--out", default="reports", help="output folder (default: reports)")
     b.add_argument("--quick", action="store_true", help="small sizes (for trying the command; not for the report)")
     b.set_defaults(run=cmd_bench)
+
+    from .figure_command import add_parser as add_figure_parser  # figure N / figure --list (verify/paper_figures.py)
+
+    add_figure_parser(sub)
     return ap
 
 

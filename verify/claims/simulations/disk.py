@@ -4,23 +4,25 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-import mpmath
 import numpy as np
 
 from verify.behaviour import both_sides, side_fractions
 from verify.circling import circling
 
 from ..base import FigureData, RunData, decide, undecided
-from .runs import G, K, _arrays, _sense, _verdict, circle_centre, run
+from .runs import G, K, _arrays, _sense, _verdict, circle_centre, run, run_start
 
 
 def _eq21_psidot(th, phd, k=K):
+    """psidot of the steady circle of Eq. 21 at theta, phidot (the starts fig2, fig4-*: tests/test_figure_starts.py)."""
     return (-G * math.cos(th) / (phd * math.sin(th)) - (1 + k) * phd * math.cos(th)) / (1 + 2 * k)
 
 
 def _check_fig2():
-    th, phd = 1.8, 5.0
-    _, data = run("disk", {"theta": th, "phidot": phd, "psidot": _eq21_psidot(th, phd)}, 4, "Eq. 21 circle")
+    from verify.figure_starts import start
+
+    _, data = run_start("fig2", "Eq. 21 circle")  # theta0 = 1.8, phidot0 = 5, psidot0 from Eq. 21
+    phd = float(start("fig2").state["phidot"])
     t, _, x, y, phi, _ = _arrays(data)
     cx, cy = circle_centre(x, y)
     cm_rate = np.polyfit(t, np.unwrap(np.arctan2(y - cy, x - cx)), 1)[0]
@@ -52,16 +54,15 @@ def _fig3_runs():
     rate = 1.001 * crit
     member = 2 * rate * 0.1  # the phidot0 of the family Eq. 30 assumes, (2k+1) psidot = 2(k+1) phidot alpha at k = 1/4
     out = {"crit": crit, "rate": rate, "member": member}
-    out["lhs0"] = run("disk", {"theta": th0, "psidot": rate}, 10, "1.001 x Eq. 32, alpha0 = 0.1, phidot0 = 0")[1]
-    out["lhs1"] = run("disk", {"theta": th0, "psidot": rate, "phidot": member}, 10,
-                      "1.001 x Eq. 32, alpha0 = 0.1, phidot0 = 2 psidot0 alpha0")[1]
+    out["lhs0"] = run_start("fig3-lhs", "1.001 x Eq. 32, alpha0 = 0.1, phidot0 = 0")[1]
+    out["lhs1"] = run_start("fig3-lhs-family", "1.001 x Eq. 32, alpha0 = 0.1, phidot0 = 2 psidot0 alpha0")[1]
     out["small"] = run("disk", {"theta": math.pi / 2 + 0.001, "psidot": rate, "phidot": 2 * rate * 0.001}, 10,
                        "control: alpha0 = 0.001")[1]
     out["small0"] = run("disk", {"theta": math.pi / 2 + 0.001, "psidot": rate}, 10, "alpha0 = 0.001, phidot0 = 0")[1]
     out["scan"] = {phd: run("disk", {"theta": th0, "psidot": rate, "phidot": phd}, 10, f"alpha0 = 0.1, phidot0 = {phd:g}")[1]
                    for phd in FIG3_SCAN}
     out["switch"] = _bisect_phidot(lambda phd: _crosses(0.1, phd, rate), member, 4.0)
-    out["rhs"] = run("disk", {"theta": th0, "psidot": 0.9 * crit}, 10, "0.9 x Eq. 32, phidot0 = 0")[1]
+    out["rhs"] = run_start("fig3-rhs", "0.9 x Eq. 32, phidot0 = 0")[1]
     out["mirror"] = run("disk", {"theta": th0, "psidot": -0.9 * crit}, 10, "control: mirrored (psidot0 < 0)")[1]
     return out
 
@@ -163,10 +164,8 @@ def _check_fig3_rhs():
 
 
 def _check_fig4():
-    th, phd = 1.3, 5.0
-    state = {"theta": th, "phidot": phd, "psidot": _eq21_psidot(th, phd)}
-    _, lhs = run("disk", state, 5, "Eq. 21: exact circle")
-    _, rhs = run("disk", dict(state, phidot=0.0), 5, "same with phidot0 = 0")
+    _, lhs = run_start("fig4-lhs", "Eq. 21: exact circle")  # theta0 = 1.3, phidot0 = 5, psidot0 from Eq. 21
+    _, rhs = run_start("fig4-rhs", "same with phidot0 = 0")
     return lhs, rhs
 
 
@@ -208,12 +207,9 @@ def _check_fig4_rhs():
 def _fig5_runs():
     crit = math.sqrt(G / (K + 1))
     th0 = math.pi / 2 + 0.01
-    member = lambda rate: 2 * (K + 1) * rate * 0.01 / (2 * K + 1)
-    return {
-        "lhs": run("disk", {"theta": th0, "phidot": 1.1 * crit, "psidot": member(1.1 * crit)}, 10,
-                   "1.1 x Eq. 41, psidot0 = 2(k+1) phidot0 alpha0/(2k+1)")[1],
-        "rhs": run("disk", {"theta": th0, "phidot": 0.9 * crit, "psidot": member(0.9 * crit)}, 10,
-                   "0.9 x Eq. 41, psidot0 = 2(k+1) phidot0 alpha0/(2k+1)")[1],
+    return {  # the starts fig5-lhs, fig5-rhs: 1.1 and 0.9 x Eq. 41, psidot0 the linearisation's family member
+        "lhs": run_start("fig5-lhs", "1.1 x Eq. 41, psidot0 = 2(k+1) phidot0 alpha0/(2k+1)")[1],
+        "rhs": run_start("fig5-rhs", "0.9 x Eq. 41, psidot0 = 2(k+1) phidot0 alpha0/(2k+1)")[1],
         "lhs0": run("disk", {"theta": th0, "phidot": 1.1 * crit}, 10, "1.1 x Eq. 41, psidot0 = 0")[1],
     }
 
@@ -276,10 +272,9 @@ def _check_fig6():
     from ..disk import _fig6_rates
 
     out = []
-    for family, label in (("no-vertical-spin", "no z rotation"), ("cm-at-rest", "v_CM = 0")):
+    for family, label, name in (("no-vertical-spin", "no z rotation", "fig6-lhs"), ("cm-at-rest", "v_CM = 0", "fig6-rhs")):
         phr, psr, v = _fig6_rates("1/100", family)
-        _, data = run("disk", {"theta": "0.01", "phidot": mpmath.nstr(phr, 30), "psidot": mpmath.nstr(psr, 30)}, 0.5,
-                      label, n_eval=2001)
+        _, data = run_start(name, label)  # the state solved at 30 digits, rounded once to double
         out.append((data, float(np.hypot(np.array(data.x) - data.x[0], np.array(data.y) - data.y[0]).max()),
                     float(2 * v / abs(phr))))  # the steady CM circle's diameter, v/|phidot| its radius
     (lhs, r_l, d_l), (rhs, r_r, d_r) = out

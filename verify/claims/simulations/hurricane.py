@@ -10,7 +10,8 @@ from verify.behaviour import leaves, oscillates, spirals_out
 from verify.engine.single import solve
 
 from ..base import FigureData, RunData, decide
-from .runs import G, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _verdict, circle_centre, finite_offset, run
+from .runs import (G, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _verdict, circle_centre, finite_offset, run,
+                   run_start)
 
 
 def _hb_steady_theta(phd):
@@ -35,8 +36,7 @@ def _static(d: RunData, name: str, theta_tol: float, cm_tol=None):
 def _fig15_runs():
     phd = math.sqrt(2.6 * G)
     th = _hb_steady_theta(phd)
-    return (th, run("hurricane", {"theta": th, "phidot": phd, "psidot": phd}, 5, "exact Eq. 72 start")[1],
-            run("hurricane", {"theta": th + 0.01, "phidot": phd, "psidot": phd}, 5, "theta0 + 0.01")[1])
+    return (th, run_start("fig15-lhs", "exact Eq. 72 start")[1], run_start("fig15-rhs", "theta0 + 0.01")[1])
 
 
 def _check_fig15_lhs():
@@ -59,8 +59,7 @@ def _check_fig15_rhs():
 def _fig16_runs():
     phd = math.sqrt(25 * G)
     th = _hb_steady_theta(phd)
-    return (th, run("hurricane", {"theta": th + 0.01, "phidot": phd, "psidot": phd}, 3, "theta0 + 0.01")[1],
-            run("hurricane", {"theta": th, "phidot": phd, "psidot": 1.1 * phd}, 3, "psidot0 10% above")[1])
+    return (th, run_start("fig16-lhs", "theta0 + 0.01")[1], run_start("fig16-rhs", "psidot0 10% above")[1])
 
 
 def _check_fig16_lhs():
@@ -94,8 +93,7 @@ def _check_fig16_rhs():
 def _fig17_runs():
     rho, th = 1.2, 0.578
     phd = math.sqrt(G / ((1.4 * rho - 1) - (2 - rho) * math.cos(th)))
-    return (phd, run("hurricane", {"theta": th, "phidot": phd, "psidot": rho * phd}, 2, "exact Eq. 82 start")[1],
-            run("hurricane", {"theta": th + 0.01, "phidot": phd, "psidot": rho * phd}, 2, "theta0 + 0.01")[1])
+    return (phd, run_start("fig17-lhs", "exact Eq. 82 start")[1], run_start("fig17-rhs", "theta0 + 0.01")[1])
 
 
 def _check_fig17_lhs():
@@ -119,9 +117,8 @@ def _fig18_runs():
     from verify.studies.thresholds import threshold
 
     out = {"threshold": float(threshold("hurricane", "sleeping").value) / 2 / SQRT_G}  # phidot0 = psidot0, omega3 = 2 phidot0
-    for f in (0.98, 0.97):
-        out[f] = run("hurricane", {"theta": 0.01, "phidot": f * SQRT_G, "psidot": f * SQRT_G}, 10,
-                     f"{f} sqrt(g), theta0 = 0.01")[1]
+    for f, name in ((0.98, "fig18-lhs"), (0.97, "fig18-rhs")):
+        out[f] = run_start(name, f"{f} sqrt(g), theta0 = 0.01")[1]
     out["free"] = run("hurricane", {"theta": 0.01, "phidot": 0.97 * SQRT_G, "psidot": 0.97 * SQRT_G}, 10,
                       "0.97 sqrt(g), no events", events=False)[1]
     out["small"] = run("hurricane", {"theta": 0.001, "phidot": 0.97 * SQRT_G, "psidot": 0.97 * SQRT_G}, 10,
@@ -180,7 +177,7 @@ def _check_fig18_rhs():
 
 @lru_cache(maxsize=None)
 def _fig19_runs():
-    out = {f: run("hurricane", {"theta": 0.01, "psidot": f * SQRT_G}, 10, f"psidot0 = {f} sqrt(g)")[1] for f in (1.95, 1.9)}
+    out = {f: run_start(name, f"psidot0 = {f} sqrt(g)")[1] for f, name in ((1.95, "fig19-lhs"), (1.9, "fig19-rhs"))}
     out["free"] = run("hurricane", {"theta": 0.01, "psidot": 1.9 * SQRT_G}, 10, "psidot0 = 1.9 sqrt(g), no events",
                       events=False)[1]
     return out
@@ -276,10 +273,10 @@ def _fig20_runs():
     phd = math.sqrt(G / ((1.4 * rho - 1) - (2 - rho) * math.cos(th)))
     state = {"phidot": phd, "psidot": rho * phd}
     out = {"phd": phd, "rho": rho, "threshold": float(threshold("hurricane", "sleeping").value)}
-    out["exact"] = run("hurricane", dict(state, theta=th), 10, "exact Eq. 82 start")[1]
+    out["exact"] = run_start("fig20-lhs", "exact Eq. 82 start")[1]
     # near the stability boundary the oscillation is slow (period ~30 s): 100 s to see it turn back twice
-    out["small"] = run("hurricane", dict(state, theta=th + 0.001), 100, "theta0 + 0.001 (100 s)")[1]
-    out["large"] = run("hurricane", dict(state, theta=th + 0.05), 10, "theta0 + 0.05")[1]
+    out["small"] = run_start("fig20-lhs-deviation", "theta0 + 0.001 (100 s)")[1]
+    out["large"] = run_start("fig20-rhs", "theta0 + 0.05")[1]
     out["free"] = run("hurricane", dict(state, theta=th + 0.05), 10, "theta0 + 0.05, no events", events=False)[1]
     return out
 

@@ -11,7 +11,7 @@ from verify.engine.single import solve
 
 from ..base import FigureData, RunData, decide, qualify, undecided
 from .runs import (G, PRINTED_SET, RING_PRINTED, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _sense, _verdict,
-                   finite_offset, run)
+                   finite_offset, run, run_start)
 
 
 def _ring_params() -> dict:
@@ -51,8 +51,7 @@ def _fig9_runs():
     phd, psd = _ring_cm_rest_rates(0.1, +1)
     out = {}
     for f, side in ((1.01, "LHS"), (0.99, "RHS")):
-        out[side] = _ring_run({"theta": 0.1, "phidot": phd, "psidot": f * psd}, 10,
-                              f"CM-at-rest circle, phidot0 > 0, |psidot0| x {f}")[1]
+        out[side] = run_start(f"fig9-{side.lower()}", f"CM-at-rest circle, phidot0 > 0, |psidot0| x {f}")[1]
         out[side + " mirror"] = _ring_run({"theta": 0.1, "phidot": -phd, "psidot": -f * psd}, 10,
                                           f"mirror image, |psidot0| x {f}")[1]
     for rate in (-10.0, -20.0, -40.0):
@@ -107,10 +106,12 @@ def _fig10_runs():
     h = float(RING_PRINTED["h"])
     eq = math.atan2(1, h)  # cot^-1 h
     out = {"eq": eq, "threshold": float(threshold("ring", "straight-line", RING_PRINTED).value)}
+    panels = {(2e-4, 19.3): "fig10-lhs", (2e-4, 18.8): "fig10-rhs"}  # the figure's starts; -2e-4: the other sign
     for d in (2e-4, -2e-4):
         for rate in (19.3, 18.8):
-            out[(d, rate)] = _ring_run({"theta": eq + d, "psidot": rate}, 5, f"psidot0 = {rate}, Delta theta = {d:+g}",
-                                       n_eval=10001)[1]
+            label = f"psidot0 = {rate}, Delta theta = {d:+g}"
+            out[(d, rate)] = (run_start(panels[(d, rate)], label)[1] if (d, rate) in panels else
+                              _ring_run({"theta": eq + d, "psidot": rate}, 5, label, n_eval=10001)[1])
     out["free"] = _ring_run({"theta": eq + 2e-4, "psidot": 18.8}, 5, "psidot0 = 18.8, no events", n_eval=10001,
                             events=False)[1]
     # negative control of the path's deviation: the same rate from the equilibrium itself rolls straight
@@ -197,9 +198,8 @@ def _fig11_runs():
     root = float(steady_state("ring", "diameter-spin", "25.7", RING_PRINTED)["theta"])
     near = 1.225 - _fig11_lhs_root()  # the LHS's start above its equilibrium: the caption's 'near'
     out = {"root": root, "near": near, "threshold": float(threshold("ring", "diameter-spin", RING_PRINTED).value)}
-    out["lhs"] = _ring_run({"theta": 1.225, "phidot": SQRT_G}, 20, "phidot0 = sqrt(g/R), theta0 = 1.225")[1]
-    out["start"] = _ring_run({"theta": root + near, "phidot": 25.7}, 20,
-                             f"phidot0 = 25.7, theta0 = equilibrium {near:+.4f} (the LHS's offset)")[1]
+    out["lhs"] = run_start("fig11-lhs", "phidot0 = sqrt(g/R), theta0 = 1.225")[1]
+    out["start"] = run_start("fig11-rhs", f"phidot0 = 25.7, theta0 = equilibrium {near:+.4f} (the LHS's offset)")[1]
     out["start free"] = _ring_run({"theta": root + near, "phidot": 25.7}, 20, "the same, no events", events=False)[1]
     out["printed"] = _ring_run({"theta": 1.205, "phidot": 25.7}, 20, "phidot0 = 25.7, theta0 = 1.205 (printed)")[1]
     out["free"] = _ring_run({"theta": 1.205, "phidot": 25.7}, 20, "phidot0 = 25.7, theta0 = 1.205, no events",
@@ -273,9 +273,11 @@ def _check_fig12():
     caption's statements are about what is plotted (the CM or the point A; dimensionless time),
     so they are decided on the rolling equations run without the contact event, and the
     loss of contact is reported."""
+    from verify.figure_starts import start as figure_start
+
     h = float(RING_PRINTED["h"])
-    start = {"theta": math.pi / 2 - 0.55, "phidot": 4.5 * SQRT_G}
-    sol, cm = _ring_run(start, 3, "CM (contact not enforced)", events=False, n_eval=3001)
+    start = {k: float(v) for k, v in figure_start("fig12").state.items()}  # pi/2 - .55, 4.5 sqrt(g/R)
+    sol, cm = run_start("fig12", "CM (contact not enforced)")  # run without the contact event, 3001 points
     normal = np.array([float(v) for v in sol.normal_force])
     first = solve("ring", "3", {k: repr(v) for k, v in start.items()}, params=RING_PRINTED, n_eval=2)
     ax, ay = _point_a(cm, h)

@@ -49,6 +49,21 @@ def run(model, state, t_end, label, n_eval=DENSE, **kw):
     return sol, data
 
 
+def run_start(name: str, label: str, **kw):
+    """(Trajectory, RunData) of the figure start ``name`` (:mod:`verify.figure_starts`): the one
+    source of each panel's start, so the report's run is the run a reader gets by that name.
+    The RunData carries the start's panel side."""
+    from verify.figure_starts import start
+
+    s = start(name)
+    params = dict(s.params) or None
+    kw.setdefault("n_eval", s.n_eval)
+    if not s.events:
+        kw.setdefault("events", False)
+    sol, data = run(s.model, dict(s.state), s.t_end, label, params=params, **kw)
+    return sol, dataclasses.replace(data, side=s.side)
+
+
 def _arrays(d: RunData):
     return tuple(np.array(v) for v in (d.t, d.theta, d.x, d.y, d.phi, d.omega3))
 
