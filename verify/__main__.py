@@ -10,12 +10,6 @@ if __name__ == "__main__":
     from .guard import supervise, wants_json
 
     supervise(sys.argv[1:])  # returns in the child, which runs the command; the parent exits as it does
-    if sys.argv[1:2] == ["figure"]:  # figure --list reads two files: answer before the CLI's heavy imports
-        from .paper_figures import fast_list_main
-
-        listed = fast_list_main(sys.argv[2:], sys.stdout)
-        if listed is not None:
-            sys.exit(listed)
     try:
         from .cli import main
     except KeyboardInterrupt:  # Ctrl-C while sympy, heyoka, ... load

@@ -146,34 +146,6 @@ def list_record(listing: FigureList) -> dict:
             "results_file": listing.results_file, "note": listing.note}
 
 
-def fast_list_main(argv: list, out) -> Optional[int]:
-    """``figure --list [--format text|json]`` without the full command line's imports: the exit
-    status, or None when ``argv`` (after ``figure``) is anything else (the full CLI handles it)."""
-    rest, fmt = list(argv), "text"
-    if "--list" not in rest:
-        return None
-    rest.remove("--list")
-    if rest in ([], ["--format", "text"], ["--format=text"]):
-        fmt = "text"
-    elif rest in (["--format", "json"], ["--format=json"]):
-        fmt = "json"
-    else:
-        return None
-    try:
-        listing = figure_list()
-    except ValueError:  # a malformed results.json or paper: the full command line says so in one line
-        return None
-    try:
-        out.write((json.dumps(list_record(listing), indent=2) if fmt == "json" else list_text(listing)) + "\n")
-        out.flush()
-    except BrokenPipeError:  # | head: stop quietly, as the full command line does (exit status 141)
-        import os
-
-        os.dup2(os.open(os.devnull, os.O_WRONLY), out.fileno())
-        return 141
-    return 0
-
-
 # --- one figure --------------------------------------------------------------------------------
 
 @dataclass(frozen=True)

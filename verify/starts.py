@@ -45,6 +45,8 @@ class Start:
     note: str = ""
     friction: str | None = None
     kind: str = "reference"  # "figure", "reference" or "default"
+    n_eval: int | None = None  # the output grid the source drew (a figure's), or None: the command's default
+    events: bool = True  # False only where the source ran without the model's events (Fig. 12)
 
 
 #: Each model's default start: the reference case whose start it takes.
@@ -78,8 +80,9 @@ def figure_starts() -> tuple:
     except ImportError:  # pragma: no cover - the registry is part of the suite
         return ()
     return tuple(Start(f.name, f.model, dict(f.params), dict(f.state), f.t_end, f"paper Fig. {f.figure}"
-                       + (f" {f.side.upper()}" if f.side else ""), f.reading, kind="figure")
-                 for f in figures.FIGURE_STARTS)
+                       + (f" {f.side.upper()}" if f.side else ""), f.reading, kind="figure", n_eval=f.n_eval,
+                       events=f.events)
+                 for f in figures.STARTS)
 
 
 def all_starts() -> tuple:

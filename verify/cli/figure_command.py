@@ -4,8 +4,7 @@ One paper figure (Figs. 1-20): the caption's words, the suite's verdict on each 
 evaluation and drawing as the report, :mod:`verify.paper_figures`), checked against
 reports/results.json, and the regenerated figure written to ``DIR/fig-NN.png``
 (``fig-NN-lhs.png`` with ``--side``).  Exit 1 when a computed verdict differs from the stored one.
-This module imports nothing heavy; ``figure --list`` alone even skips the command line's own
-imports (verify/__main__.py calls :func:`verify.paper_figures.fast_list_main`).
+This module imports nothing heavy, so ``figure --list`` answers at once.
 """
 from __future__ import annotations
 

@@ -6,6 +6,8 @@ import argparse
 from .arguments import UsageError
 from .commands import (cmd_bench, cmd_models, cmd_plot, cmd_reference, cmd_report, cmd_score, cmd_spindown, cmd_starts,
                        cmd_sweep, cmd_threshold)
+from .animate_command import add_parser as add_animate_parser
+from .figure_command import add_parser as add_figure_parser
 from .run_command import add_trajectory_parser
 
 #: --help's first line
@@ -28,6 +30,8 @@ def parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
 
     add_trajectory_parser(sub)
+    add_figure_parser(sub)
+    add_animate_parser(sub)
 
     pl = sub.add_parser("plot", help="draw a saved run (a file of 'trajectory --output')")
     pl.add_argument("run_file", metavar="RUN", help="RUN.csv, RUN.json or RUN.npz written by 'trajectory --output'")
@@ -117,10 +121,6 @@ def parser() -> argparse.ArgumentParser:
     b.add_argument("--out", default="reports", help="output folder (default: reports)")
     b.add_argument("--quick", action="store_true", help="small sizes (for trying the command; not for the report)")
     b.set_defaults(run=cmd_bench)
-
-    from .figure_command import add_parser as add_figure_parser  # figure N / figure --list (verify/paper_figures.py)
-
-    add_figure_parser(sub)
     return ap
 
 

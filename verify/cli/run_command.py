@@ -57,6 +57,8 @@ class RunRequest:
     velocity: object
     start: str  # how the start was chosen, in words (printed and kept in the files)
     given: dict  # the options as typed (kept in the files' metadata)
+    n_eval: int | None = None  # the start's own output grid (a figure's), unless --n-eval is given
+    events: bool = True  # False only for a start its source ran without events (Fig. 12)
 
 
 def read_request(args) -> RunRequest:
@@ -96,12 +98,12 @@ def read_request(args) -> RunRequest:
         how = "--state as given, unset components 0"
     model = model or start.model
     values = {"params": {}, "state": {}}
-    t_end, friction = None, None
+    t_end, friction, n_eval, events = None, None, None, True
     if start is not None:
         for group, given in (("params", start.params), ("state", start.state)):
             for name, text in given.items():
                 values[group][name] = _start_value(text, f"start {start.name}: {name}")
-        t_end, friction = start.t_end, start.friction
+        t_end, friction, n_eval, events = start.t_end, start.friction, start.n_eval, start.events
     values["params"].update(fixed)
     values["params"].update(params)
     values["state"].update(state)
@@ -114,7 +116,7 @@ def read_request(args) -> RunRequest:
     given = {"model": typed, "start": args.start, "state": {k: str(v) for k, v in state.items()},
              "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end, "friction": args.friction}
     return RunRequest(model, args.equations, values["params"], values["state"], str(t_end), friction, args.velocity,
-                      how, given)
+                      how, given, n_eval, events)
 
 
 def _start_value(text: str, what: str):
@@ -189,7 +191,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
         try:
             sol = solve(model, request.t_end, request.state, request.params, precision=precision, tol=tol,
                         n_eval=n_eval, high_accuracy=getattr(args, "high_accuracy", False), progress=bar.update,
-                        friction=friction)
+                        friction=friction, events=request.events)
         except ValueError as err:
             raise UsageError(str(err)) from None
         except IntegrationError as err:  # the run up to its failure, if the integrator kept it
@@ -233,8 +235,7 @@ def cmd_trajectory(args, session: Session) -> int:
     except RunFileError as err:
         raise UsageError(str(err)) from None
     kept = out is not None or picture is not None
-    n_eval = _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2) if args.n_eval is not None else (
-        N_EVAL_KEPT if kept else 101)
+    n_eval = output_points(args, request, kept)
     _precision(args.precision)
     sol, failure = run(request, args, session, n_eval, f"trajectory {request.model}")
     from .output import _dumps, _not_ok, coulomb_record, coulomb_text, trajectory_record, _text
@@ -267,6 +268,15 @@ def cmd_trajectory(args, session: Session) -> int:
     if failure is not None:
         raise RunFailed(str(failure))
     return 0
+
+
+def output_points(args, request: RunRequest, kept: bool) -> int:
+    """--n-eval, else the start's own grid (a figure's), else N_EVAL_KEPT for a run kept or drawn, else 101."""
+    if getattr(args, "n_eval", None) is not None:
+        return _positive_int(args.n_eval, "--n-eval", N_EVAL_MAX, low=2)
+    if request.n_eval is not None:
+        return request.n_eval
+    return N_EVAL_KEPT if kept else 101
 
 
 def _keep(sol, request: RunRequest, out, picture) -> list:

@@ -64,7 +64,7 @@ from . import heyoka_log, hybrid_guards as guards, slip_onset
 from .compile import friction_function, symbol_map, to_heyoka
 from .problem import max_step
 from .single import solve as solve_rolling
-from .trajectory import IntegrationError
+from .trajectory import IntegrationError, Trajectory
 from .validation import InvalidStart, first_problem, parameters as resolve_parameters, positive_number
 from .validation import state as resolve_state
 from ..precision import Precision, parse_precision
@@ -148,6 +148,10 @@ class HybridSolution:
 
     def __getitem__(self, name):
         return self.y[STATE_NAMES.index(name)]
+
+    # the same time-series methods as a rolling run's
+    columns, save, to_csv, to_json, _save_as = (Trajectory.columns, Trajectory.save, Trajectory.to_csv,
+                                                Trajectory.to_json, Trajectory._save_as)
 
 
 @dataclass(frozen=True)

@@ -90,6 +90,34 @@ class Trajectory:
     def final_state(self) -> dict:
         return {n: self.y[i, -1] for i, n in enumerate(STATE_NAMES)}
 
+    # --- the run as a time series (verify.series) -------------------------------------------------
+    def columns(self) -> dict:
+        """Every column of the run by name (t, the state, invariants, N/(Mg), mu_req ...): :mod:`verify.series`."""
+        from ..series import run_columns
+
+        return dict(run_columns(self).values)
+
+    def save(self, path, **meta):
+        """Write the run to ``path`` as CSV, JSON or NPZ (by its extension), atomically, with units and metadata."""
+        from ..series import run_columns, write_run
+
+        return write_run(run_columns(self, meta), path)
+
+    def to_csv(self, path, **meta):
+        """The run as CSV: ``# key: value`` metadata lines, then ``name [unit]`` headings and every digit."""
+        return self._save_as(path, ".csv", meta)
+
+    def to_json(self, path, **meta):
+        """The run as JSON: ``meta``, ``units`` and ``columns`` (arrays)."""
+        return self._save_as(path, ".json", meta)
+
+    def _save_as(self, path, suffix: str, meta: dict):
+        from pathlib import Path
+
+        if Path(path).suffix.lower() != suffix:
+            raise ValueError(f"{str(path)!r}: a {suffix} file name is expected (save() picks the format by extension)")
+        return self.save(path, **meta)
+
 
 @dataclass(frozen=True)
 class End:

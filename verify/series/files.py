@@ -45,11 +45,11 @@ def output_path(text: str, option: str = "--output") -> Path:
     path = Path(str(text))
     if not str(text).strip():
         raise RunFileError(f"{option} '': allowed a file name ending in {', '.join(EXTENSIONS)}")
+    if path.is_dir():
+        raise RunFileError(f"{option} {str(text)!r} is a folder; allowed a file name ending in {', '.join(EXTENSIONS)}")
     if path.suffix.lower() not in EXTENSIONS:
         raise RunFileError(f"{option} {str(text)!r}: unknown extension {path.suffix or '(none)'!r}; "
                            f"allowed {', '.join(EXTENSIONS)}")
-    if path.is_dir():
-        raise RunFileError(f"{option} {str(text)!r} is a folder; allowed a file name ending in {', '.join(EXTENSIONS)}")
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise RunFileError(f"{option} {str(text)!r}: the folder {str(folder)!r} does not exist; create it first")
@@ -122,8 +122,8 @@ def _npz_bytes(columns: RunColumns) -> bytes:
     arrays = {}
     for name in columns.names:
         v = np.asarray(columns.values[name])
-        if v.dtype == object:  # quad, MPFR: every digit as text
-            v = np.array([_text(x) for x in v], dtype=str)
+        if v.dtype not in (np.float64, np.longdouble) and v.dtype.kind != "U":  # quad, MPFR: every digit as text
+            v = np.array([_text(x) for x in columns.values[name]], dtype=str)
         arrays[name] = v
     arrays["__units__"] = np.array(json.dumps(columns.units))
     arrays["__meta__"] = np.array(json.dumps(columns.meta, allow_nan=False))

@@ -4,7 +4,7 @@
 live run or a file read back by :func:`~.files.read_run`):
 
 1. the centre of mass's path in the plane and the contact point's trace (P = C + r_P, paper Eqs.
-   7, 47, 63), in the body's length unit;
+   7, 47, 63, drawn by the animation's geometry), in the body's length unit;
 2. theta(t), 3. phi(t), 4. omega3(t) = phidot cos(theta) + psidot (paper Eq. 16);
 5. E(t) - E(0), or E + W - E(0) for a Coulomb run (W the work of friction), in the energy unit:
    the conservation check at a glance (for a dissipative model, E - E(0) is the energy lost);
@@ -27,23 +27,16 @@ FORMATS = (".png", ".svg", ".pdf")
 _METADATA = {".png": {"Software": None}, ".svg": {"Date": None}, ".pdf": {"CreationDate": None, "Producer": None}}
 
 
-def contact_offset(model: str, params: dict, theta: np.ndarray, phi: np.ndarray):
-    """(dx, dy) of r_P = r2 e2 + r3 e3 from C to the contact point, or None without a contact.
+def contact_trace(model: str, params: dict, theta, phi, x, y):
+    """(x, y) of the contact point P = C + r_P on the plane (paper Eqs. 7, 47, 63), or None without
+    a contact (the gyroscope's pivot, the effective model): :mod:`verify.animation.geometry`'s."""
+    from ..animation import geometry
 
-    r2, r3 of paper Eq. 7 (disk: -1, 0), Eq. 47 (ring: -1, -h), Eq. 63 (hurricane balls:
-    -sin(theta), -(1 + cos(theta))); e2, e3 of :mod:`models.symbols`.
-    """
-    body = model.split("+")[0]
-    if body in ("disk", "sliding-disk"):
-        r2, r3 = -np.ones_like(theta), np.zeros_like(theta)
-    elif body == "ring":
-        r2, r3 = -np.ones_like(theta), -float(params["h"]) * np.ones_like(theta)
-    elif body == "hurricane":
-        r2, r3 = -np.sin(theta), -(1 + np.cos(theta))
-    else:  # the gyroscope turns about a pivot; the effective model has no contact
+    kind = geometry.DRAWN_MODELS.get(model)
+    if kind not in ("disk", "ring", "hurricane") or (kind == "ring" and "h" not in params):
         return None
-    s, c, sp_, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
-    return r2 * (-sp_ * c) + r3 * (sp_ * s), r2 * (cp * c) + r3 * (-cp * s)
+    p = geometry.contact_point(kind, theta, phi, x, y, params)
+    return p[:, 0], p[:, 1]
 
 
 def draw_run(columns: RunColumns):
@@ -60,9 +53,9 @@ def draw_run(columns: RunColumns):
     ax = axes[0, 0]
     ax.plot(x, y, label="centre of mass C")
     params = {k: float(v) for k, v in m.get("params", {}).items()}
-    offset = contact_offset(m["model"], params, theta, phi)
-    if offset is not None:
-        ax.plot(x + offset[0], y + offset[1], lw=0.6, alpha=0.8, label="contact point P")
+    trace = contact_trace(m["model"], params, theta, phi, x, y)
+    if trace is not None:
+        ax.plot(trace[0], trace[1], lw=0.6, alpha=0.8, label="contact point P")
     ax.plot(x[:1], y[:1], "o", color="black", ms=4, label="start")
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel(f"x / {length}")
@@ -148,11 +141,11 @@ def picture_path(text: str, option: str = "--plot") -> Path:
     from .files import RunFileError
 
     path = Path(str(text))
+    if path.is_dir():
+        raise RunFileError(f"{option} {str(text)!r} is a folder; allowed a file name ending in {', '.join(FORMATS)}")
     if path.suffix.lower() not in FORMATS:
         raise RunFileError(f"{option} {str(text)!r}: unknown extension {path.suffix or '(none)'!r}; "
                            f"allowed {', '.join(FORMATS)}")
-    if path.is_dir():
-        raise RunFileError(f"{option} {str(text)!r} is a folder; allowed a file name ending in {', '.join(FORMATS)}")
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise RunFileError(f"{option} {str(text)!r}: the folder {str(folder)!r} does not exist; create it first")
