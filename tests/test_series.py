@@ -132,3 +132,21 @@ def test_output_overwrites_atomically_and_plot_reads_it_back(capsys, tmp_path):
     assert code == 0 and (tmp_path / "again.svg").stat().st_size > 1000
     code, _, err = _main(capsys, "plot", str(tmp_path / "none.csv"), "--out", str(tmp_path / "x.png"))
     assert code == 2 and "no run file" in err and not (tmp_path / "x.png").exists()
+
+
+def test_a_run_file_of_a_reference_start_is_scored_by_verify_score(capsys, tmp_path):
+    """The suite's own run files are what `verify score` reads (units in the headings, metadata as comments)."""
+    from verify import score
+
+    for ext in (".csv", ".json"):
+        path = tmp_path / f"run{ext}"
+        code, _, err = _main(capsys, "trajectory", "--start", "disk-standard-1", "--output", str(path), "--n-eval", "41")
+        assert code == 0, err
+        assert score(path, "disk-standard-1").min_digits > 10
+
+
+def test_the_scorer_knows_the_run_format_by_name():
+    from verify.scoring import runs
+    from verify.series import FORMAT
+
+    assert runs._SUITE_FORMAT == FORMAT

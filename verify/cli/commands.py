@@ -135,14 +135,16 @@ def cmd_threshold(args, session: Session) -> int:
         session.emit(_dumps(rec))
         return 0
     value = rec["threshold"]["value"]
-    lines = [f"{rec['model']} {rec['motion']}: {rec['threshold']['name']} = {value if value else 'none'}"
+    unit = " s^-1" if value and rec["threshold"]["name"].endswith("dot0") else ""  # the thresholds are rates
+    lines = [f"{rec['model']} {rec['motion']}: {rec['threshold']['name']} = {value + unit if value else 'none'}"
              f"{'  (' + rec['closed_form'] + ')' if rec['closed_form'] else ''}", f"  {rec['method']}"]
     if args.nonlinear_tilt is not None:
         b = rec.get("bracket")
         if b is None:
             lines.append(f"nonlinear bracket at tilt {tilt}: none (no linear threshold to bracket)")
         else:
-            lines.append(f"nonlinear bracket at tilt {b['tilt']}: {rec['threshold']['name']} in [{b['low']}, {b['high']}]")
+            lines.append(f"nonlinear bracket at tilt {b['tilt']} rad: {rec['threshold']['name']} in "
+                         f"[{b['low']}, {b['high']}]{unit}")
             lines.append(f"  {b['method']}")
     session.emit("\n".join(lines))
     return 0
@@ -157,7 +159,12 @@ def cmd_spindown(args, session: Session) -> int:
         rec = to_record(spindown(args.model, theta, args.family, params))
     except ValueError as err:
         raise UsageError(str(err)) from None
-    session.emit(_dumps(rec) if args.format == "json" else "\n".join(f"{k:<15} {v}" for k, v in rec.items()))
+    if args.format == "json":
+        session.emit(_dumps(rec))
+        return 0
+    units = {"theta": "rad", "phidot": "s^-1", "psidot": "s^-1", "paper_phidot": "s^-1",
+             "energy": "m R^2/s^2"}
+    session.emit("\n".join(f"{k:<15} {v}{' ' + units[k] if k in units else ''}" for k, v in rec.items()))
     return 0
 
 

@@ -16,8 +16,6 @@ is computed before anything is written; each file is replaced atomically.
 """
 from __future__ import annotations
 
-import csv
-import io
 import json
 from pathlib import Path
 
@@ -26,6 +24,8 @@ import mpmath
 from models.symbols import STATE_NAMES
 
 from ..provenance import writable_folder, write_atomic
+from ..series.columns import RunColumns, state_units
+from ..series.files import to_csv_text
 from ..frames import CONTACT, MOTION, MATRIX_ENTRIES, QUATERNION, euler_to_b
 from .store import CONVENTIONS, DIRECTORY, load_set
 
@@ -62,14 +62,23 @@ def euler_columns(record: dict) -> dict:
     return {"t": list(record["grid"]), **{n: list(record["state"][n]["value"]) for n in STATE_NAMES}}
 
 
-def _csv(columns: dict) -> str:
-    out = io.StringIO()
-    w = csv.writer(out, lineterminator="\n")
-    names = list(columns)
-    w.writerow(names)
-    for row in zip(*(columns[n] for n in names)):
-        w.writerow(row)
-    return out.getvalue()
+def column_units(record: dict, names) -> dict:
+    """The unit of each exported column (:mod:`verify.series.columns`' units, form (b)'s added)."""
+    from models.catalogue import entry
+
+    length = entry(record["model"]["name"]).length_unit
+    units = state_units(length)
+    units.update({n: "1" for n in MATRIX_ENTRIES + QUATERNION})
+    units.update({"x": length, "y": length, "z": length, "vx": f"{length}/s", "vy": f"{length}/s",
+                  "vz": f"{length}/s", "wx": "1/s", "wy": "1/s", "wz": "1/s"})
+    return {n: units[n] for n in names}
+
+
+def _csv(columns: dict, record: dict, form: str) -> str:
+    """One form of a case in the suite's CSV (:func:`verify.series.files.to_csv_text`: ``# key: value``
+    metadata, ``name [unit]`` headings, the stored decimals as they are)."""
+    meta = {"reference_case": record["name"], "form": form, **case_setup(record), "conventions": CONVENTIONS}
+    return to_csv_text(RunColumns(columns, column_units(record, columns), meta))
 
 
 def case_setup(record: dict) -> dict:
@@ -97,13 +106,14 @@ def export_set(directory: Path, fmt: str, source: Path = DIRECTORY) -> list:
         setup = case_setup(record)
         setups.append((setup, bool(matrix)))
         if fmt == "csv":
-            files[f"{record['name']}.euler.csv"] = _csv(euler)
+            files[f"{record['name']}.euler.csv"] = _csv(euler, record, "euler")
             if matrix:
-                files[f"{record['name']}.matrix.csv"] = _csv(matrix)
+                files[f"{record['name']}.matrix.csv"] = _csv(matrix, record, "matrix+quaternion")
         else:
             files[f"{record['name']}.json"] = json.dumps(
                 {"format": "rolling-verify reference case, export 1", **setup, "conventions": CONVENTIONS,
-                 "forms": _forms_text(), "euler": euler, "matrix": matrix or None}, indent=1) + "\n"
+                 "forms": _forms_text(), "units": column_units(record, list(euler) + list(matrix)),
+                 "euler": euler, "matrix": matrix or None}, indent=1) + "\n"
     files["README.md"] = readme(setups, fmt, source)
     for name, text in files.items():
         write_atomic(directory / name, text)
@@ -137,6 +147,11 @@ def readme(setups: list, fmt: str, source: Path = DIRECTORY) -> str:
 Written by `python -m verify reference --export DIR --format {fmt}` from `{_shown_source(source)}` (see its
 README for how far the values are agreed). Score your own run of a case with
 `python -m verify score RUN --case NAME` (RUN a CSV or JSON file in either form below).
+
+Each CSV is the suite's run-file format (the one `python -m verify trajectory ... --output run.csv`
+writes): lines `# key: <JSON value>` with the case's setup and conventions, then one heading line
+`name [unit]` (lengths in the body's unit, time in s, rates in 1/s), then the values.  The JSON files
+give the same units in `units`.  `score` reads headings with or without units.
 
 ## Forms
 

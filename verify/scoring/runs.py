@@ -16,7 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..frames import detect
+from ..frames import EULER, detect
+
+
+#: The first line of the suite's own run files (verify.series.columns.FORMAT, written out: scoring stays light).
+_SUITE_FORMAT = "rolling-verify run 1"
 
 
 class InvalidRun(ValueError):
@@ -32,6 +36,8 @@ def read_run(run) -> tuple:
         except (OSError, UnicodeDecodeError) as err:  # missing, a folder, unreadable, not text
             raise InvalidRun(f"cannot read the run {path}: {err}") from None
         columns = _json(text, path) if path.suffix.lower() == ".json" else _csv(text, path)
+        if _SUITE_FORMAT in text[:200]:  # the suite's own run file: its state columns (the rest is derived)
+            columns = {n: v for n, v in columns.items() if n in EULER}
     else:
         columns = dict(run)
     try:
@@ -67,7 +73,7 @@ def _csv(text: str, path: Path) -> dict:
     rows = [r for r in csv.reader(line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#"))]
     if not rows:
         raise InvalidRun(f"{path} has no header line")
-    header = [h.strip() for h in rows[0]]
+    header = [_without_unit(h) for h in rows[0]]
     if len(set(header)) != len(header):
         raise InvalidRun(f"{path}: a column is named twice in {header}")
     cols = {h: [] for h in header}
@@ -79,11 +85,19 @@ def _csv(text: str, path: Path) -> dict:
     return cols
 
 
+def _without_unit(heading: str) -> str:
+    """``theta [rad]`` -> ``theta``: the headings of the suite's own run files (verify.series) carry units."""
+    name, bracket, unit = heading.strip().partition(" [")
+    return name.strip() if bracket and unit.endswith("]") else heading.strip()
+
+
 def _json(text: str, path: Path) -> dict:
     try:
         data = json.loads(text)
     except json.JSONDecodeError as err:
         raise InvalidRun(f"{path} is not valid JSON ({err})") from None
+    if isinstance(data, dict) and isinstance(data.get("columns"), dict) and "units" in data:
+        data = data["columns"]  # a run file of the suite (python -m verify trajectory --output run.json)
     if not isinstance(data, dict) or not all(isinstance(v, list) for v in data.values()):
         raise InvalidRun(f"{path}: expected one object of columns (name: list of numbers)")
     return data
