@@ -410,7 +410,7 @@ def test_threshold_text_prints_the_nonlinear_bracket(capsys, monkeypatch):
     monkeypatch.setattr(thresholds, "bracket", bracket)
     code, out, err = run(capsys, "threshold", "disk", "diameter-spin", "--nonlinear-tilt", "1e-4")
     assert code == 0 and calls == [("disk", "diameter-spin", "1e-4")]
-    assert "nonlinear bracket at tilt 1e-4: phidot0 in [27.9201208353, 27.920122087]" in out
+    assert "nonlinear bracket at tilt 1e-4 rad: phidot0 in [27.9201208353, 27.920122087] s^-1" in out
     assert "bisection on the rate" in out
 
 
