@@ -29,7 +29,7 @@ def render_markdown(r: dict) -> str:
         "",
     ]
     lines += _md_targets(r) + _md_solve(r) + _md_ensembles(r) + _md_energy(r) + _md_modes(r) + _md_work_precision(r)
-    lines += _md_compile(r)
+    lines += _md_compile(r) + _md_commands(r)
     return "\n".join(lines)
 
 
@@ -247,6 +247,19 @@ def _md_work_precision(r: dict) -> list:
                                                            f"at error {a['error']:.1e} (quad: {q['error']:.1e})" for a in od)]
     lines += ["", "![work against precision](figures/bench-work-precision.png)", ""]
     return lines
+
+
+def _md_commands(r: dict) -> list:
+    c = r.get("commands")
+    if not c:
+        return []
+    lines = ["## The command line", "",
+             f"Each command in a fresh process, as typed (best of {c['rounds']} for the listings; `figure` and "
+             f"`animate` after a first run has compiled). The bare interpreter's start is {c['interpreter_start_cpu_s']} s "
+             "of CPU.", "", "| command | CPU s | wall s | CPU / interpreter start | exit |", "|---|---:|---:|---:|---:|"]
+    lines += [f"| `{row['command']}` | {row['cpu_s']} | {row['wall_s']} | {row['cpu_over_interpreter_start']} | "
+              f"{row['exit_status']} |" for row in c["commands"]]
+    return lines + [""]
 
 
 def _md_compile(r: dict) -> list:
