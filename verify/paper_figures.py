@@ -24,6 +24,7 @@ import verify
 
 from .claims.base import NOT_CHECKABLE, PAPER_FILE
 from .figure_starts import figures_with_runs, panel_sides, starts_of
+from .unicode_math import plain
 
 N_FIGURES = 20
 #: The report's own data (``make report`` writes it): verdicts are read from here.
@@ -52,6 +53,7 @@ def figure_titles(paper: Path = PAPER_FILE) -> dict:
     titles = {}
     for m in re.finditer(r"^Figure (\d+): (.+)$", paper.read_text(encoding="utf-8"), re.M):
         text = re.split(r"(?<!Eq)(?<!Eqs)(?<!Fig)(?<!FIG)(?<! al)\.\s", m.group(2).strip(), maxsplit=1)[0].rstrip(". ")
+        text = plain(text)  # the math in Unicode before the cut: a cut never splits a $...$
         if len(text) > _TITLE_CHARS:
             text = text[:_TITLE_CHARS].rsplit(" ", 1)[0] + " ..."
         titles[int(m.group(1))] = text
@@ -134,7 +136,7 @@ def list_text(listing: FigureList) -> str:
         width = max((len(c.source) for c in f.claims), default=0)
         lines += [f"    {c.source:<{width}}  {c.verdict or '-':<13}  {c.id}" for c in f.claims]
     lines.append(listing.note)
-    return "\n".join(lines)
+    return plain("\n".join(lines))
 
 
 def list_record(listing: FigureList) -> dict:
@@ -279,7 +281,7 @@ def figure_text(fig: PaperFigure) -> str:
     if not fig.records:
         lines += ["(no claims)", ""]
     lines.append(fig.note)
-    return "\n".join(lines)
+    return plain("\n".join(lines))
 
 
 def next_step(fig: PaperFigure) -> str:
