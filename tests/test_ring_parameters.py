@@ -103,7 +103,7 @@ def test_models_listing_says_where_the_defaults_come_from(capsys):
     from verify.cli import main
 
     assert main(["models", "--format", "json"]) == 0
-    rec = {r["model"]: r for r in json.loads(capsys.readouterr().out)}["ring"]
+    rec = {r["model"]: r for r in json.loads(capsys.readouterr().out)["models"]}["ring"]
     for name, printed in ring.PRINTED.items():
         desc = rec["parameters"][name]["description"]
         assert "annular cylinder" in desc and f"the paper prints {printed}" in desc, desc

@@ -16,11 +16,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..frames import EULER, detect
+from ..frames import FORMS, detect
 
 
 #: The first line of the suite's own run files (verify.series.columns.FORMAT, written out: scoring stays light).
 _SUITE_FORMAT = "rolling-verify run 1"
+
+
+_FORM_COLUMNS = {c for form in FORMS.values() for c in form}
 
 
 class InvalidRun(ValueError):
@@ -36,8 +39,8 @@ def read_run(run) -> tuple:
         except (OSError, UnicodeDecodeError) as err:  # missing, a folder, unreadable, not text
             raise InvalidRun(f"cannot read the run {path}: {err}") from None
         columns = _json(text, path) if path.suffix.lower() == ".json" else _csv(text, path)
-        if _SUITE_FORMAT in text[:200]:  # the suite's own run file: its state columns (the rest is derived)
-            columns = {n: v for n, v in columns.items() if n in EULER}
+        if _SUITE_FORMAT in text[:200]:  # the suite's own run file: its state columns (invariants etc. are derived)
+            columns = {n: v for n, v in columns.items() if n in _FORM_COLUMNS}
     else:
         columns = dict(run)
     try:
