@@ -76,6 +76,9 @@ def test_api_methods(tmp_path, disk_double):
     disk_double.to_csv(tmp_path / "a.csv")
     disk_double.to_json(tmp_path / "a.json")
     assert json.loads((tmp_path / "a.json").read_text())["units"]["t"] == "s"
+    assert disk_double.plot(tmp_path / "a.png").stat().st_size > 1000
+    with pytest.raises(ValueError, match="a .csv file name"):
+        disk_double.to_csv(tmp_path / "a.json")
 
 
 @pytest.mark.parametrize("suffix", [".png", ".svg", ".pdf"])

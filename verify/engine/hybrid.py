@@ -150,8 +150,9 @@ class HybridSolution:
         return self.y[STATE_NAMES.index(name)]
 
     # the same time-series methods as a rolling run's
-    columns, save, to_csv, to_json, _save_as = (Trajectory.columns, Trajectory.save, Trajectory.to_csv,
-                                                Trajectory.to_json, Trajectory._save_as)
+    columns, save, to_csv, to_json, plot, animate, _save_as = (
+        Trajectory.columns, Trajectory.save, Trajectory.to_csv, Trajectory.to_json, Trajectory.plot, Trajectory.animate,
+        Trajectory._save_as)
 
 
 @dataclass(frozen=True)

@@ -111,6 +111,21 @@ class Trajectory:
         """The run as JSON: ``meta``, ``units`` and ``columns`` (arrays)."""
         return self._save_as(path, ".json", meta)
 
+    def plot(self, path):
+        """Draw the run (path and contact trace, theta, phi, omega3, energy, N/(Mg)) into a PNG, SVG or PDF."""
+        from ..series import run_columns
+        from ..series.plot import write_plot
+
+        return write_plot(run_columns(self), path)
+
+    def animate(self, path, label=None, **options):
+        """The body rolling in 3D into a GIF, MP4 or HTML (:func:`verify.animation.animate` and its options)."""
+        from ..animation import AnimationRun, animate
+
+        run = AnimationRun.from_solution(label or self.model, self.model, self,
+                                         {k: float(v) for k, v in self.params.items()})
+        return animate([run], path, **options)
+
     def _save_as(self, path, suffix: str, meta: dict):
         from pathlib import Path
 
