@@ -49,14 +49,12 @@ def cmd_animate(args, session: Session) -> int:
     from ..animation import FORMATS, AnimationError, animate
 
     runs_from = _source(args)
-    out = Path(args.out) if args.out else Path(f"{runs_from[1]}.gif")
-    if out.suffix.lower() not in FORMATS:
-        raise UsageError(f"--out {str(out)!r}: unknown extension {out.suffix or '(none)'!r}; allowed {', '.join(FORMATS)}")
-    folder = out.parent if str(out.parent) else Path(".")
-    if not folder.is_dir():
-        raise UsageError(f"--out {str(out)!r}: the folder {str(folder)!r} does not exist; create it first")
-    if out.is_dir():
-        raise UsageError(f"--out {str(out)!r} is a folder; allowed a file name ending in {', '.join(FORMATS)}")
+    from ..series.files import RunFileError, output_path
+
+    try:
+        out = output_path(args.out if args.out else f"{runs_from[1]}.gif", "--out", FORMATS)
+    except RunFileError as err:
+        raise UsageError(str(err)) from None
     speed = None if args.speed is None else float(_positive(args.speed, "--speed", "0.25 (slow motion) or 2"))
     fps = float(_positive(args.fps, "--fps", "25"))
     width = _positive_int(args.width, "--width", 4000, low=64)

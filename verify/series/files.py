@@ -37,19 +37,21 @@ class RunFileError(ValueError):
     """A file name or a file's content that cannot be a run (bad input: one line naming it)."""
 
 
-def output_path(text: str, option: str = "--output") -> Path:
+def output_path(text: str, option: str = "--output", extensions: tuple = EXTENSIONS) -> Path:
     """The checked output file: a known extension, an existing folder, not itself a folder.
 
-    Checked before the run so that nothing is computed for a file that cannot be written.
+    Checked before the run so that nothing is computed for a file that cannot be written; the
+    pictures (:func:`verify.series.plot.picture_path`) and animations are checked by the same rule.
     """
     path = Path(str(text))
+    allowed = f"allowed a file name ending in {', '.join(extensions)}"
     if not str(text).strip():
-        raise RunFileError(f"{option} '': allowed a file name ending in {', '.join(EXTENSIONS)}")
+        raise RunFileError(f"{option} '': {allowed}")
     if path.is_dir():
-        raise RunFileError(f"{option} {str(text)!r} is a folder; allowed a file name ending in {', '.join(EXTENSIONS)}")
-    if path.suffix.lower() not in EXTENSIONS:
+        raise RunFileError(f"{option} {str(text)!r} is a folder; {allowed}")
+    if path.suffix.lower() not in extensions:
         raise RunFileError(f"{option} {str(text)!r}: unknown extension {path.suffix or '(none)'!r}; "
-                           f"allowed {', '.join(EXTENSIONS)}")
+                           f"allowed {', '.join(extensions)}")
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise RunFileError(f"{option} {str(text)!r}: the folder {str(folder)!r} does not exist; create it first")

@@ -137,19 +137,10 @@ def plot_bytes(columns: RunColumns, suffix: str) -> bytes:
 
 
 def picture_path(text: str, option: str = "--plot") -> Path:
-    """The checked picture file: a known extension, an existing folder, not a folder itself."""
-    from .files import RunFileError
+    """The checked picture file (:func:`verify.series.files.output_path`'s rule, the picture formats)."""
+    from .files import output_path
 
-    path = Path(str(text))
-    if path.is_dir():
-        raise RunFileError(f"{option} {str(text)!r} is a folder; allowed a file name ending in {', '.join(FORMATS)}")
-    if path.suffix.lower() not in FORMATS:
-        raise RunFileError(f"{option} {str(text)!r}: unknown extension {path.suffix or '(none)'!r}; "
-                           f"allowed {', '.join(FORMATS)}")
-    folder = path.parent if str(path.parent) else Path(".")
-    if not folder.is_dir():
-        raise RunFileError(f"{option} {str(text)!r}: the folder {str(folder)!r} does not exist; create it first")
-    return path
+    return output_path(text, option, FORMATS)
 
 
 def write_plot(columns: RunColumns, path) -> Path:
