@@ -181,7 +181,7 @@ def test_negative_t_end_and_theta(capsys):
 
 
 def test_argparse_errors_are_one_line(capsys):
-    for argv in (["trajectory", "disk", "--state", "theta=1"], [], ["nope"], ["models", "--format", "xml"], ["trajectory"]):
+    for argv in (["trajectory", "--state", "theta=1"], [], ["nope"], ["models", "--format", "xml"], ["trajectory"]):
         code, out, err = run(capsys, *argv)
         assert code == 2 and out == ""
         one_error_line(err)

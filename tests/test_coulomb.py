@@ -460,9 +460,10 @@ def test_the_ring_slides_sticks_and_rolls_with_its_energy_balanced():
 
 
 @pytest.mark.parametrize("argv, words", [
-    (["--friction", "abc"], "--friction: 'abc' is not a number"),
-    (["--friction", "nan"], "--friction: 'nan' is not a finite number"),
-    (["--friction", "-0.1"], "--friction '-0.1': allowed a Coulomb coefficient >= 0"),
+    (["--friction", "abc"], "--friction abc: allowed a positive finite number"),
+    (["--friction", "nan"], "--friction nan: allowed a positive finite number"),
+    (["--friction", "-0.1"], "--friction -0.1: allowed a positive finite number such as 0.5 (a Coulomb coefficient > 0)"),
+    (["--friction", "0"], "--friction 0: allowed a positive finite number"),
     (["--friction", "1", "--velocity", "1,abc"], "--velocity VX,VY: 'abc' is not a number"),
     (["--friction", "1", "--t-end", "abc"], "--t-end abc"),
 ])

@@ -23,7 +23,7 @@ from models.catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES
 
 #: The reference set (its index and case files); the report's own copy.
 REFERENCE = Path(__file__).resolve().parent.parent / "reports" / "reference"
-#: The Coulomb coefficient of a Coulomb body's default start (a table top: rolls for long, slips now and then).
+#: The Coulomb coefficient of a Coulomb body run without --friction (a table top: rolls for long, slips now and then).
 DEFAULT_FRICTION = "0.5"
 
 
@@ -52,7 +52,7 @@ class Start:
 #: Each model's default start: the reference case whose start it takes.
 DEFAULT_CASES = {
     "disk": "disk-standard-1", "hoop": "hoop-general-10", "ring": "ring-standard-10",
-    "hurricane": "hurricane-fig17", "sliding-disk": "sliding-disk-standard-10",
+    "hurricane": "hurricane-fig18-lhs", "sliding-disk": "sliding-disk-standard-10",
     "gyroscope": "gyroscope-standard-10", "effective": "effective-standard-10",
 }
 
@@ -112,8 +112,6 @@ def default_start(model: str) -> Start:
     how = f"the start of the reference case {case.name}, {case.note}"
     if model != case.model and model not in ALIASES:
         how += f", with {model}'s own defaults for its other parameters"
-    if friction is not None:
-        how += f", Coulomb coefficient mu = {friction}"
     name = case.name if model in (case.model, "hoop") else f"{model}:{case.name}"
     return replace(case, name=name, model=ALIASES[model][0] if model in ALIASES else model, params=params,
                    friction=friction, note=how, kind="default")

@@ -109,10 +109,10 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
               for i, (run, p, a) in enumerate(zip(runs, params, arrays))]
     text = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=fontsize, family="monospace")
     step = clock.speed / fps
-    state = timing.speed_text(clock.speed) + (" (raised to fit)" if clock.raised else "")
+    state = timing.speed_text(clock.speed) + (f", to fit {clock.times[-1] / clock.speed:.3g} s" if clock.raised else "")
 
     def draw(k: int) -> list:
-        text.set_text(f"t = {_time_text(clock.times[k], step)} s ({state})")
+        text.set_text(f"t = {_time_text(clock.times[k], step)} s, {state}")
         return [a for p in panels for a in p.update(k)] + [text]
 
     draw(0)

@@ -138,6 +138,7 @@ def states_at(arrays: dict, times: np.ndarray) -> dict:
 
 
 def speed_text(speed: float) -> str:
-    """'0.25x: slow motion', '1x: real time', '3x: fast motion'."""
-    kind = "real time" if abs(speed - 1) < 1e-9 else ("slow motion" if speed < 1 else "fast motion")
-    return f"{speed:.3g}x: {kind}"
+    """'shown at 0.25x real time (slow motion)', 'in real time', 'shown at 3x real time (sped up)'."""
+    if abs(speed - 1) < 1e-9:
+        return "in real time"
+    return f"shown at {speed:.3g}x real time ({'slow motion' if speed < 1 else 'sped up'})"

@@ -38,7 +38,8 @@ def add_parser(sub) -> None:
                         "(self-contained, offline); default <model or figure>.gif")
     a.add_argument("--speed", default=None,
                    help="simulated seconds per second of animation (default: the fastest turning shown at one turn "
-                        "per second, never faster than real time, raised to fit --max-seconds)")
+                        "per second and at most real time, unless the run would then last longer than --max-seconds: "
+                        "then sped up to fit, and said so on every frame)")
     a.add_argument("--fps", default="20", help="frames per second (default 20: GIF keeps 1/100 s, so 20, 25, 50 are exact)")
     a.add_argument("--width", default="480", help="width of each panel in pixels (default 480)")
     a.add_argument("--max-seconds", default="12", help="longest animation in seconds (default 12: a GIF of a few MB)")
@@ -66,7 +67,7 @@ def cmd_animate(args, session: Session) -> int:
         raise UsageError(str(err)) from None
     session.emit(f"wrote {record.file}: {len(runs)} panel(s), {record.frames} frames at {record.fps:g} fps, "
                  f"{record.size[0]} x {record.size[1]} px; {record.speed:g} s of the run per second shown"
-                 + (" (raised to fit --max-seconds)" if record.raised else "")
+                 + (" (sped up from the default rule to fit --max-seconds)" if record.raised else "")
                  + f"\nnext        open {record.file} in a browser or an image viewer")
     return 0
 

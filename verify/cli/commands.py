@@ -43,13 +43,14 @@ def cmd_models(args, session: Session) -> int:
         for pname, p in r["parameters"].items():
             lines.append(f"    {pname:<3} default {p['default']:<28} range {p['range']:<12} {p['description']}")
         lines.append(f"    domain {r['domain']}; invariants: {', '.join(r['invariants'])}; lengths in {r['length_unit']}, "
-                     f"energy per {r['energy_unit']} (in {r['energy_unit']}/s^2)")
+                     f"moments of inertia in {r['energy_unit']}, energies in {r['energy_unit']}/s^2")
     for name, a in aliases.items():
         lines.append(f"{name}: the {a['model']} with {', '.join(f'{k} = {v}' for k, v in a['params'].items())}")
     for name, text in coulomb.items():
         lines.append(f"{name}: {text}")
     lines.append("units: time s, angles rad, lengths in R (or the ball radius a), g/L = 980 s^-2 by default "
-                 "(g = 980 cm/s^2, L = 1 cm); in SI: --param g=9.81 with L = 1 m")
+                 "(g = 980 cm/s^2, L = 1 cm); in SI: --param g=9.81 with L = 1 m; the normal force N in units of M g, "
+                 "M the body's whole mass (2m for the two hurricane balls of mass m)")
     lines.append("next: python -m verify trajectory disk --plot run.png   (a model's default start; "
                  "python -m verify starts lists named starts)")
     session.emit("\n".join(lines))
@@ -75,6 +76,8 @@ def cmd_starts(args, session: Session) -> int:
         for s in group:
             state = ", ".join(f"{k} = {_brief(v)}" for k, v in s.state.items())
             lines.append(f"  {s.name:<24} {s.model:<12} t_end {s.t_end:>4} s  {state}")
+    lines.append("a reference case named after a figure (disk-fig5-rhs) is the reference set's own reading of the caption "
+                 "(its note says which); the figure starts (fig5-rhs) are the report's runs")
     lines.append("defaults (a model run without --start or --state): "
                  + ", ".join(f"{m} -> {c}" for m, c in DEFAULT_CASES.items()))
     lines.append("next: python -m verify trajectory --start fig5-lhs --output run.csv --plot run.png")

@@ -21,6 +21,8 @@ from .arguments import (N_EVAL_MAX, RunFailed, UsageError, _decimal, _positive, 
 MODEL_CHOICES = ALL_NAMES + COULOMB_NAMES + tuple(ALIASES)
 #: output points when the run is kept or drawn and --n-eval is not given (a smooth curve, a frame per point)
 N_EVAL_KEPT = 2001
+#: the end time of a run from --state alone (no --start, no --t-end), in s
+DEFAULT_T_END = "2"
 
 
 def add_run_options(p: argparse.ArgumentParser) -> None:
@@ -109,14 +111,37 @@ def read_request(args) -> RunRequest:
     values["state"].update(state)
     if args.t_end is not None:
         t_end = _positive(args.t_end, "--t-end", "2 (seconds)")
+        n_eval = None  # a start's own grid belongs to its own end time
     if t_end is None:
-        raise UsageError("--t-end is needed with --state and no --start (e.g. --t-end 2, in seconds)")
+        t_end = DEFAULT_T_END
+        how += f", t_end {DEFAULT_T_END} s (the default; --t-end to change)"
     if args.friction is not None:
         friction = args.friction
+    if model in COULOMB_NAMES and friction is None:
+        friction = starts.DEFAULT_FRICTION
+        how += f"; Coulomb coefficient mu = {friction} (the default; --friction to change)"
+    elif model in COULOMB_NAMES:
+        how += f"; Coulomb coefficient mu = {friction}"
+    if values["state"]:
+        typed_state = {name.strip(): text.strip() for name, _, text in (item.partition("=") for item in args.state or ())}
+        shown = {**(start.state if start is not None else {}), **typed_state}
+        how += "; initial " + ", ".join(f"{k} = {_short(shown.get(k, v))}" for k, v in values["state"].items()) \
+            + " (others 0)"
     given = {"model": typed, "start": args.start, "state": {k: str(v) for k, v in state.items()},
              "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end, "friction": args.friction}
     return RunRequest(model, args.equations, values["params"], values["state"], str(t_end), friction, args.velocity,
                       how, given, n_eval, events)
+
+
+def _short(value) -> str:
+    """A start value as printed (the run and its files use every digit)."""
+    text = str(value)
+    if len(text) <= 12:
+        return text
+    try:
+        return f"{float(text):.10g}"
+    except ValueError:
+        return text
 
 
 def _start_value(text: str, what: str):
@@ -145,14 +170,10 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
     precision = _precision(args.precision)
     tol = getattr(args, "tol", None)
     if request.model in COULOMB_NAMES:
-        if request.friction is None:
-            raise UsageError(f"{request.model} needs --friction MU (the Coulomb coefficient, >= 0)")
         if request.equations != "derived" or tol is not None or getattr(args, "high_accuracy", False):
             raise UsageError(f"{request.model} takes the derived equations at the precision's epsilon only "
                              "(no --equations paper, --tol, --high-accuracy)")
-        friction = _decimal(request.friction, "--friction", "0.5 (a Coulomb coefficient >= 0)")
-        if friction.startswith("-") and any(c in "123456789" for c in friction):
-            raise UsageError(f"--friction {friction!r}: allowed a Coulomb coefficient >= 0 such as 0.5")
+        friction = _positive(request.friction, "--friction", "0.5 (a Coulomb coefficient > 0)")
         velocity = None
         if request.velocity is not None:
             velocity = request.velocity.split(",")
@@ -209,16 +230,16 @@ def add_trajectory_parser(sub) -> None:
     add_run_options(t)
     t.add_argument("--tol", default=None, help="Taylor tolerance (default: the precision's epsilon)")
     t.add_argument("--n-eval", default=None,
-                   help=f"output points from 0 to t_end (default 101, or {N_EVAL_KEPT} with --output or --plot; "
-                        f"2 to {N_EVAL_MAX})")
+                   help=f"output points from 0 to t_end, 2 to {N_EVAL_MAX} (default 101, or {N_EVAL_KEPT} with --output "
+                        "or --plot; a figure's start, at its own t_end, uses the figure's grid)")
     t.add_argument("--high-accuracy", action="store_true",
                    help="heyoka's compensated summation: energy error ~ t^0.5 over 1e6 steps (python -m verify bench)")
     t.add_argument("--output", default=None, metavar="FILE",
                    help="keep the whole run: FILE.csv, FILE.json or FILE.npz (t, the state, invariants, N/(Mg), mu_req, "
-                        "with units; every digit)")
+                        "with units; every digit: numbers in double and long, decimal strings in quad and MPFR)")
     t.add_argument("--plot", default=None, metavar="FILE",
                    help="draw the run: FILE.png, FILE.svg or FILE.pdf (path, theta, phi, omega3, energy, normal force)")
-    t.add_argument("--format", choices=("json", "text"), default="text")
+    t.add_argument("--format", choices=("json", "text"), default="text", help="what is printed: text (default) or JSON")
     t.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
                    help="progress on stderr once a second after the first two (default: on with --format text, off with json)")
     t.set_defaults(run=cmd_trajectory)
@@ -296,9 +317,25 @@ def _keep(sol, request: RunRequest, out, picture) -> list:
 
 
 def _next_step(args, request: RunRequest, out) -> str:
-    """One line pointing to what a person might do next with this run."""
+    """One line pointing to what a person might do next with this run (the options as typed)."""
     if out is not None:
         return (f"next        python -m verify plot {out} --out run.png   |   "
                 f"python -m verify animate {out} --out run.gif")
-    start = f"--start {args.start}" if args.start else (args.model or request.model)
-    return f"next        python -m verify trajectory {start} --output run.csv --plot run.png"
+    return f"next        python -m verify {' '.join(_typed(args))} --output run.csv --plot run.png"
+
+
+def _typed(args) -> list:
+    """The run's options as they were given (quoted for a shell where needed)."""
+    import shlex
+
+    words = ["trajectory"] + ([args.model] if args.model else [])
+    for option, value in (("--start", args.start), ("--t-end", args.t_end), ("--friction", args.friction),
+                          ("--precision", None if args.precision == "double" else args.precision),
+                          ("--equations", None if args.equations == "derived" else args.equations),
+                          ("--velocity", args.velocity)):
+        if value is not None:
+            words += [option, value]
+    for option, values in (("--param", args.param), ("--state", args.state)):
+        for value in values or ():
+            words += [option, value]
+    return [shlex.quote(w) for w in words]

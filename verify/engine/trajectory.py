@@ -67,6 +67,12 @@ class Trajectory:
     state_names: tuple = STATE_NAMES
     friction: object = None
 
+    def __repr__(self) -> str:  # the arrays are for reading, not for printing
+        t = self.t
+        span = f"t = {float(t[0]):g} to {float(t[-1]):g} s, {len(t)} outputs" if len(t) else "no outputs"
+        return (f"Trajectory(model={self.model!r}, equations={self.equations!r}, precision={self.precision.name!r}, "
+                f"outcome={self.outcome!r}, {span}, steps={self.steps})")
+
     @property
     def invariants(self) -> dict:
         return self.evaluation.traces

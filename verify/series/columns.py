@@ -120,7 +120,8 @@ def run_columns(sol, extra_meta: dict | None = None) -> RunColumns:
         "outcome": sol.outcome,
         "message": str(sol.message),
         "steps": int(sol.steps),
-        "units_note": "time s, angles rad, lengths in L (R, or the ball radius a), g/L = params.g in s^-2",
+        "units_note": ("time s, angles rad, lengths in L (R, or the ball radius a), g/L = params.g in s^-2; "
+                       f"moments of inertia in {inertia}; N in units of M g, M the body's whole mass"),
         "version": suite_version(),
     }
     if hybrid:

@@ -63,7 +63,7 @@ def draw_run(columns: RunColumns):
     ax.set_title("path in the plane")
     ax.legend(loc="best")
     for a, values, label in ((axes[0, 1], theta, r"$\theta$ / rad"), (axes[0, 2], phi, r"$\phi$ / rad"),
-                             (axes[1, 0], omega3, r"$\omega_3 = \dot\phi\cos\theta + \dot\psi$ / (1/s)")):
+                             (axes[1, 0], omega3, r"$\omega_3 = \dot\phi\cos\theta + \dot\psi$ / s$^{-1}$")):
         a.plot(t, values)
         a.set_xlabel("t / s")
         a.set_ylabel(label)
