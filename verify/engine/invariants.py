@@ -45,7 +45,7 @@ class InvariantTrace:
         relative in each state component, or in each operation evaluating I, moves I by at
         most about eps times this times the degree of the terms.  It is an upper bound on
         the magnitudes actually rounded (the cfunc evaluates I unexpanded, often on smaller
-        intermediates).  It can be far above |I(0)|: on the README's run the disk
+        intermediates).  It can be far above |I(0)|: on the Python page's run (docs/python.md: theta = 1.2, psidot = 10, 2 s) the disk
         dips to theta = 0.25 with phidot = -237, psidot = 250, where the expanded terms of
         (phidot cos theta + psidot)^2 are ~6e4 and cancel, and |E(0)| is 0.006 of it.
     eps : float
@@ -60,7 +60,7 @@ class InvariantTrace:
         from zero at the run's precision (a p_phi that is zero in exact arithmetic rounds to
         about eps times its terms) and a ratio to it means nothing.  The rule uses eps, not a
         fixed fraction such as 1e-3 of the term scale, because the bound is pessimistic:
-        the disk's energy is 0.006 of its term scale on the README's run and 1e-5 to 1e-13
+        the disk's energy is 0.006 of its term scale on that run and 1e-5 to 1e-13
         of it on the Fig. 6 and spin-down states, and E(0) is right to about 1 eps in all of
         them (at theta = 1e-6 in double it is 563 eps term scale: kept).
     initial_value : optional
@@ -78,7 +78,7 @@ class InvariantTrace:
 
     Both ratios are kept because they answer different questions: ``max_rel_drift`` is
     what a user of the value I loses; ``max_drift_vs_terms`` (in eps) is whether the run
-    was as good as its precision allows (0.16 eps on the README's quad run, where the
+    was as good as its precision allows (0.16 eps on that run in quad, where the
     relative drift is 5.2e-33 = 27 eps).
     """
 

@@ -23,7 +23,7 @@ keeps modest).  The widths therefore grow like the flow's own conditioning times
 committed, the ideal of a linear error propagation.  The variant that re-orthogonalises the box
 every step (Lohner's QR) or carries the products as interval matrices was measured to keep the
 excess of every fast phase of the disk's nutation (27 digits lost in the first second against
-4 here; README, proof section).
+4 here; docs/reference.md, proofs).
 """
 from __future__ import annotations
 

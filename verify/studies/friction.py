@@ -32,7 +32,7 @@ acceleration of C).  Hence
 
 with r2 = -1, r3 = 0 (disk), r2 = -1, r3 = -h (ring), r2 = -sin theta, r3 = -(1 + cos theta)
 (hurricane balls; lengths in units of the ball radius), the contact geometry of the paper
-(README, Models).  It reads neither the equations of motion nor a_C: only the steady state and
+(docs/models.md).  It reads neither the equations of motion nor a_C: only the steady state and
 the no-slip condition.  On the centre-of-mass-at-rest family (the paper's Eq. 45 for the disk)
 r2 omega3 = r3 omega2, so rho_C = 0 and mu_req = 0 at every theta: a coin exactly on that
 family needs no friction at all.
@@ -87,7 +87,7 @@ def band(mu) -> str:
 # --- the steady families: two ways -------------------------------------------------------
 
 def contact_geometry(model: str, theta, values: dict) -> tuple:
-    """(r2, r3) of r_P = CP = r2 e2 + r3 e3 for the body (the paper's contact point; README, Models)."""
+    """(r2, r3) of r_P = CP = r2 e2 + r3 e3 for the body (the paper's contact point; docs/models.md)."""
     if model == "disk":
         return -1, 0
     if model == "ring":

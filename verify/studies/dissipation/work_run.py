@@ -64,7 +64,7 @@ class WorkRun:
         heyoka keeps each step's local error at epsilon relative to the state's magnitude,
         and round-off adds epsilon-sized errors to E and to W each step; their signs are
         independent, so E + W - E(0) random-walks to ~ eps sqrt(N) E(0).  The suite allows
-        10 eps sqrt(N) for every conserved quantity (README, Accuracy; measured there <=
+        10 eps sqrt(N) for every conserved quantity (docs/accuracy.md; measured there <=
         5.1).  Measured here: 0.4-0.5 eps sqrt(N) on the study's runs of 2e6 steps.
         """
         return 10.0 * math.sqrt(max(self.steps, 1))
