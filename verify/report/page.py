@@ -86,6 +86,20 @@ class _Renderer:
         return self.md.renderInline(markdown)
 
 
+WIDE_FORMULA = 90  # characters of TeX in one row of a displayed equation: wider than the card's quote column
+
+
+def wide_quote(fragments) -> bool:
+    """Whether the quote has a displayed equation with a row too long for the card's narrow quote
+    column (about 400 px at 1400 px): the card then stacks the quote above the verdict."""
+    from .markup import is_bare_equation
+
+    frags = [fragments] if isinstance(fragments, str) else fragments
+    rows = [re.sub(r"\\(?:begin|end)\{\w+\*?\}|\\(?:left|right|mathbf|boldsymbol|dot|ddot|frac)\b|[{}]", "", row)
+            for f in frags if is_bare_equation(f) for row in f.split("\\\\")]
+    return any(len(row) > WIDE_FORMULA for row in rows)
+
+
 def data_uri(name: str, data: bytes) -> str:
     """The figure as a data URI; a PNG is embedded as lossless WebP (the same pixels in about 20 %
     fewer bytes, which keeps the self-contained page under 1.5 MB)."""
@@ -149,7 +163,8 @@ def render_html(results: dict, images: dict, benchmarks: Optional[dict] = None) 
             cards.append({
                 "id": rec["id"], "source": rec["source"], "verdict": rec["verdict"], "label": verdict_label(rec),
                 "severity_words": SEVERITY_WORDS.get(rec.get("severity"), ""),
-                "quote": r.block("\n".join(quote(rec["quote"]))), "quote_missing": rec.get("quote_not_in_paper", False),
+                "quote": r.block("\n".join(quote(rec["quote"]))), "wide": wide_quote(rec["quote"]),
+                "quote_missing": rec.get("quote_not_in_paper", False),
                 "fields": [(name, r.inline(text(value))) for name, value in fields if value],
                 "figures": [{"src": data_uri(f["file"], images[f["file"]]) if f["file"] in images else None,
                              "alt": f["alt"], "title": f["title"], "file": f["file"]} for f in rec.get("figures", ())],
