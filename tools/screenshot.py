@@ -38,8 +38,9 @@ def browser():
 
 def measure(page, width: int, height: int = 1000, chromium: str = None) -> dict:
     """The page as laid out by headless Chromium at ``width`` px: the document's scroll width against
-    the viewport's, the elements whose box reaches past the viewport's right edge or that scroll
-    sideways (a table inside its own scroll box is as unreadable as one past the edge), and the
+    the viewport's, the elements whose box reaches past the viewport's right edge, the boxes whose
+    content scrolls sideways (``[name, content width, box width]``; what they clip is not listed as
+    past the edge), and the
     characters ``$`` and ``\\`` in the text a reader sees (``innerText``: MathML shows as its
     glyphs, so raw TeX shows up here).  A temporary copy of the page runs the measuring script on
     load and writes the answer into the DOM, which ``--dump-dom`` prints."""
@@ -104,13 +105,18 @@ MEASURE = r"""<script>window.addEventListener("load", function () {
     for (var p = e.parentElement; p; p = p.parentElement) if (p.id) { s += " in #" + p.id; break; }
     return s;
   }
-  var all = document.body.getElementsByTagName("*");
+  var all = document.body.getElementsByTagName("*"), clipped = [];
   for (var i = 0; i < all.length; i++) {
     var e = all[i], r = e.getBoundingClientRect();
     if (r.width === 0 && r.height === 0) continue;
-    if (r.right > vw + 0.5) wide.push([name(e), Math.round(r.right)]);
+    var inside = false;  // within a box that scrolls sideways: listed there, not here
+    for (var j = 0; j < clipped.length && !inside; j++) inside = clipped[j].contains(e);
+    if (!inside && r.right > vw + 0.5) wide.push([name(e), Math.round(r.right)]);
     var st = getComputedStyle(e);
-    if (/auto|scroll/.test(st.overflowX) && e.scrollWidth > e.clientWidth + 1) scrolls.push([name(e), e.scrollWidth, e.clientWidth]);
+    if (/auto|scroll|hidden/.test(st.overflowX) && e.scrollWidth > e.clientWidth + 1) {
+      scrolls.push([name(e), e.scrollWidth, e.clientWidth]);
+      clipped.push(e);
+    }
   }
   var text = document.body.innerText, visible = [];
   var re = /[$\\]/g, m;
