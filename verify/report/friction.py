@@ -46,11 +46,10 @@ def render_markdown(friction: dict, dissipation=None) -> list:
     lines = [
         "## Friction",
         "",
-        "mu_req = |F_h| / N, the friction coefficient a rolling motion needs (paper Eq. 6, F = M (a_C + g Z), from the",
-        "run's own accelerations: `sol.friction_required`); a table with less cannot hold the motion. Bands: "
-        + ", ".join(bands) + ". For orientation only (as the",
-        "section's brief states them, no measured source cited): a coin on glass about 0.2-0.5, rubber on wood up to",
-        "about 1. Largest values are over each run's output grid, up to its first point with N <= 0 if it loses contact.",
+        "$\\mu_{\\mathrm{req}} = |F_h| / N$, the friction coefficient a rolling motion needs (paper Eq. 6,",
+        "$\\mathbf{F} = M (\\mathbf{a}_C + g \\mathbf{Z})$, from the run's own accelerations: `sol.friction_required`);",
+        "a table with less cannot hold the motion. Bands: " + ", ".join(bands) + ". For orientation only (rough",
+        "figures, no measured source cited): a coin on glass about 0.2-0.5, rubber on wood up to about 1. Largest values are over each run's output grid, up to its first point with $N \\le 0$ if it loses contact.",
         "",
         "**Figure runs** (every run a caption's figure shows, as the claims run it):",
         "",

@@ -55,9 +55,9 @@ def benchmarks_section(latest: Optional[dict]) -> list:
         lines += ["No benchmark run is in this folder yet.", ""]
     else:
         m = latest.get("machine", {})
-        when = latest.get("date", "an unrecorded date")
+        when = latest.get("date")
         src = (latest.get("sources") or {}).get("commit")
-        lines += [f"Latest run: {when}, on {m.get('cpu', '?')} ({m.get('cpus', '?')} cores, SIMD batch size "
+        lines += [f"Latest run{': ' + when if when else ''}, on {m.get('cpu', '?')} ({m.get('cpus', '?')} cores, SIMD batch size "
                   f"{m.get('simd_size', '?')}), heyoka {m.get('heyoka', '?')}"
                   + (f", sources at commit {src[:12]}" if src else "") + ".", ""]
     return lines
@@ -65,21 +65,25 @@ def benchmarks_section(latest: Optional[dict]) -> list:
 
 def _overview(results: dict) -> list:
     from .summary import render as render_summary
+    from .summary import render_answers
 
     claims = results["claims"]
     counts = Counter(c["verdict"] for c in claims)
-    lines = ["Every numbered equation and figure caption of the paper (`verify/claims/paper.md`, a copy of "
-             "`../shared/paper.md`), each quoted and given a verdict from an independent route (sympy identities "
-             "against the rows derived from the vectors, mpmath numbers, heyoka runs read by two measures each).", ""]
+    # the tally and the two answers first: what a reader opens the report for
+    lines = ["| verdict | claims |", "|---|---:|"]
+    lines += [f"| {v} | {counts.get(v, 0)} |" for v in VERDICTS]
+    lines += [f"| total | {len(claims)} |", ""]
     if results.get("failures"):
         lines += ["**Incomplete report:** these jobs failed, so what they compute is missing below:", ""]
         lines += [f"- `{f['job']}`: {text(f['error'])}" for f in results["failures"]]
         lines.append("")
     if results.get("summary"):
+        lines += render_answers(results["summary"])
+    lines += ["Every numbered equation and figure caption of the paper (`verify/claims/paper.md`, a copy of "
+              "`../shared/paper.md`), each quoted and given a verdict from an independent route (sympy identities "
+              "against the rows derived from the vectors, mpmath numbers, heyoka runs read by two measures each).", ""]
+    if results.get("summary"):
         lines += render_summary(results["summary"])
-    lines += ["| verdict | claims |", "|---|---:|"]
-    lines += [f"| {v} | {counts.get(v, 0)} |" for v in VERDICTS]
-    lines += [f"| total | {len(claims)} |", ""]
     nc = results.get("not_covered", {})
     if nc.get("equations") or nc.get("figures"):
         lines += [f"Not yet covered by a claim: equations {nc['equations'] or 'none'}; figures {nc['figures'] or 'none'}.",

@@ -153,22 +153,15 @@ def render_markdown(study: dict) -> list:
     for m, s in study.items():
         lines.append(f"| {m} | " + " | ".join(f"{x['turned']}/{x['judged']} ({x['read_turned']}/{x['read_judged']})"
                                                for x in s["by_h"] + s["by_w"]) + " |")
-    lines += ["", "The corners of the maps. Senses +/-, 0 undecided, '.' nothing to read; orbit start/end are the first "
-              "and last windows that decide (their span in seconds), spin start/end the run's first and last windows; "
-              "last window: its orbit sense and the two measures' turns there (once per nutation / mean).", "",
-              "| mechanism | body | h | w | c | outcome | t_stop (s) | windows (undecided) | orbit start/end (s) "
-              "| spin start/end | retrograde turn | as far as read (first retrograde window, s) | last window "
-              "| node-turn start/end | rolling reversed |",
-              "|---|---|---:|---:|---:|---|---:|---:|---|---|---|---|---|---|---|"]
+    lines += ["", "**The corners of the maps**, run by run. A sense is *positive* or *negative* about the vertical, "
+              "*undecided* where the two measures disagree; *orbit* is the slow path's sense in the first and the last "
+              "window that decide (their times), *spin* the sense of $\\omega \\cdot Z$ in the run's first and last "
+              "windows, and the *last window* gives its orbit sense and the turns the two measures count there "
+              "(once per nutation, averaged). A run too short to cut into windows has nothing to read.", ""]
     for m, s in study.items():
-        for b in s["bodies"]:
-            read = b["retrograde_by_last_read"] + (f" ({b['t_retrograde']})" if b["t_retrograde"] is not None else "")
-            windows = "." if b["windows"] is None else f"{b['windows']} ({b['windows_undecided']})"
-            last = f"{_one(b['orbit_last'])}: {_t(b['last_window_turns'][0])}/{_t(b['last_window_turns'][1])}"
-            lines.append(f"| {m} | {b['body']} | {b['h']} | {b['w']} | {b['c']} | {b['outcome']} | {b['t_stop']} "
-                         f"| {windows} | {_sign(b['orbit'])} ({_t(b['t_orbit'][0])}-{_t(b['t_orbit'][1])}) "
-                         f"| {_sign(b['spin'])} | {b['retrograde_turn']} | {read} | {last} | {_sign(b['node_turn'])} "
-                         f"| {'yes' if b['roll_reversal'] else 'no'} |")
+        lines += [f"*{m.replace('-', ' ')}*:", ""]
+        lines += [f"- {_body_words(b)}" for b in s["bodies"]]
+        lines.append("")
     how = "; ".join(f"{m}: {s['read_turned']} runs turn as far as read ({s['turns_by_orbit_reversal']} of them by "
                     f"the orbit reversing, {s['turns_by_spin_reversal']} by the spin reversing under an orbit that "
                     f"keeps its sense), {s['turned']} with the end state read, against {s['node_turn']} by the "
@@ -187,13 +180,42 @@ def render_markdown(study: dict) -> list:
     return lines
 
 
-def _sign(pair) -> str:
-    return "/".join(_one(v) for v in pair)
+_OUTCOME = {"theta_stop": "fell flat", "rim_switch": "rolled onto its other rim"}
 
 
-def _one(v) -> str:
-    """+, - or 0 (undecided) for a sense; '.' where there is none to read."""
-    return "." if v is None or (isinstance(v, float) and math.isnan(v)) else ("+" if v > 0 else "-" if v < 0 else "0")
+def _sense(v) -> str:
+    """A sense in words: positive, negative or undecided; None where there is nothing to read."""
+    return None if _nan(v) else ("positive" if v > 0 else "negative" if v < 0 else "undecided")
+
+
+def _pair_words(pair) -> str:
+    first, last = (_sense(v) for v in pair)
+    if first is None and last is None:
+        return "nothing to read"
+    return first if first == last else f"{first or 'not read'}, then {last or 'not read'}"
+
+
+def _body_words(b: dict) -> str:
+    """One corner of a map as a sentence (the table's glyphs in words)."""
+    head = (f"**{b['body']}** (h = {b['h']}, w = {b['w']}, c = {b['c']}): "
+            f"{_OUTCOME.get(b['outcome'], b['outcome'].replace('_', ' '))} at {b['t_stop']} s")
+    if b["windows"] is None:
+        return head + f", too short to cut into windows: nothing to read; rolling direction {'reversed' if b['roll_reversal'] else 'kept'}."
+    parts = [f"{b['windows']} windows, {b['windows_undecided']} undecided"]
+    if _sense(b["orbit"][0]) is None and _sense(b["orbit"][1]) is None:
+        parts.append("no window decides the orbit")
+    else:
+        parts.append(f"orbit {_pair_words(b['orbit'])} (windows at {_t(b['t_orbit'][0])} s and {_t(b['t_orbit'][1])} s)")
+    parts.append(f"spin {_pair_words(b['spin'])}")
+    turns = b["last_window_turns"]
+    counted = [f"{v:g} turns {how}" for v, how in zip(turns, ("once per nutation", "averaged")) if v is not None]
+    parts.append(f"last window {_sense(b['orbit_last']) or 'not read'}" + (f" ({', '.join(counted)})" if counted else ""))
+    read = b["retrograde_by_last_read"] + (f", first retrograde window at {b['t_retrograde']} s"
+                                           if b["t_retrograde"] is not None else "")
+    parts.append(f"retrograde turn: {b['retrograde_turn']} (as far as read: {read})")
+    parts.append(f"node-turn reading {_pair_words(b['node_turn'])}")
+    parts.append(f"rolling direction {'reversed' if b['roll_reversal'] else 'kept'}")
+    return head + "; " + "; ".join(parts) + "."
 
 
 def _t(v) -> str:

@@ -89,29 +89,39 @@ def _first(quote) -> str:
     return quote if isinstance(quote, str) else " ... ".join(quote)
 
 
-def render(s: dict) -> list:
-    """Markdown lines of the summary (no computation here)."""
+S_INV = r"$\mathrm{s}^{-1}$"
+
+
+def render_answers(s: dict) -> list:
+    """Markdown lines of the two open questions' answers, the page's first words after the tally."""
     o, d = s["olsson"], s["divergence"]
     z45 = d["eq45_zero_vertical_spin"]
     z61 = d["eq61"]["zero-vertical-spin"]
     c61 = d["eq61"]["cm-at-rest"]
-    lines = [
+    return [
         f"**Olsson or Eq. 41?** Both, each for its own contact. Rolling without slipping (a real table) is linearly "
-        f"stable while {o['rolling_form']}: rate {o['rolling_rate']} s^-1 (Eq. 41, {o['eq41']}); a frictionless plane, "
-        f"which is Olsson's zero horizontal force, needs {o['smooth_form']}: rate {float(o['smooth_rate']):.4f} s^-1 "
-        f"(footnote 2, {o['footnote2']}). The paper's own Fig. 5 runs at 1.1 and 0.9 x Eq. 41 are stable and unstable "
-        f"as Eq. 41 says ({' / '.join(str(v) for v in o['fig5'])}).",
+        f"stable while {o['rolling_form']}: rate {o['rolling_rate']} {S_INV} (Eq. 41, {o['eq41']}); a frictionless "
+        f"plane, which is Olsson's zero horizontal force, needs {o['smooth_form']}: rate "
+        f"{float(o['smooth_rate']):.4f} {S_INV} (footnote 2, {o['footnote2']}). The paper's own Fig. 5 runs at 1.1 and "
+        f"0.9 times Eq. 41's rate are stable and unstable as Eq. 41 says "
+        f"({' and '.join(str(v) for v in o['fig5'])}).",
         "",
-        f"**Does phidot diverge as theta -> 0 as Eqs. 45 and 61 say?** It diverges like theta^-1/2 on every exact "
-        f"steady spin-down. Eq. 45 is exact on the family with the centre of mass at rest (largest relative error "
-        f"{d['eq45_cm_at_rest_max_rel_error']}, round-off of 60-digit arithmetic) and the leading term on the family with "
-        f"no vertical spin (relative error {z45[0][1]} at theta = {z45[0][0]}, {z45[-1][1]} at {z45[-1][0]}: like "
-        f"3 theta^2). Eq. 61, the ring's version, is wrong ({d['eq61_verdict']}): {_ring_set_words(d)}its relative "
-        f"error tends to {z61[-1][1]}{_annular(d, 'zero-vertical-spin')} on the family with no vertical spin (theta = "
-        f"{z61[-1][0]}) and {c61[-1][1]}{_annular(d, 'cm-at-rest')} with the centre of mass at rest; the factor "
-        "(1 - h) is spurious.",
+        f"**Does $\\dot\\phi$ diverge as $\\theta \\to 0$, as Eqs. 45 and 61 say?** It diverges like "
+        f"$\\theta^{{-1/2}}$ on every exact steady spin-down. Eq. 45 is exact on the family with the centre of mass at "
+        f"rest (largest relative error {d['eq45_cm_at_rest_max_rel_error']}, round-off of 60-digit arithmetic) and the "
+        f"leading term on the family with no vertical spin (relative error {z45[0][1]} at $\\theta$ = {z45[0][0]}, "
+        f"{z45[-1][1]} at {z45[-1][0]}: like $3\\theta^2$). Eq. 61, the ring's version, is wrong ({d['eq61_verdict']}): "
+        f"{_ring_set_words(d)}its relative error tends to {z61[-1][1]}{_annular(d, 'zero-vertical-spin')} on the family "
+        f"with no vertical spin ($\\theta$ = {z61[-1][0]}) and {c61[-1][1]}{_annular(d, 'cm-at-rest')} with the centre "
+        "of mass at rest; the factor $(1 - h)$ is spurious.",
         "",
     ]
+
+
+def render(s: dict) -> list:
+    """Markdown lines of the summary after the answers (no computation here): the errata, the
+    qualified and the undecided captions."""
+    lines = []
     if s["errata"]:
         lines += ["**Errata, most serious first** (severity: " +
                   "; ".join(f"*{k}*: {v}" for k, v in SEVERITY_WORDS.items()) + "):", "",
