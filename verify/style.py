@@ -82,7 +82,8 @@ def _ramps(colours, levels: int) -> bytes:
 
 #: the palette of the line figures (:data:`RUN` and :data:`PREDICTED` curves, black text, grey grid and
 #: shading): 6 antialiasing steps from the white background to each of them
-LINE_PALETTE = _ramps(("black", RUN, PREDICTED, "0.88", SHADE, "0.4"), 6)
+LINE_COLOURS = ("black", RUN, PREDICTED, "0.88", SHADE, "0.4")
+LINE_PALETTE = _ramps(LINE_COLOURS, 6)
 
 
 def png_bytes(fig, palette: bytes = None) -> bytes:

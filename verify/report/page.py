@@ -22,6 +22,7 @@ from markdown_it import MarkdownIt
 from mdit_py_plugins.dollarmath import dollarmath_plugin
 
 from .markdown import sections, verdict_label
+from .prose_math import typeset_prose
 from .markup import quote, text
 from .summary import SEVERITY_WORDS
 
@@ -60,6 +61,7 @@ def compact_tables(html_text: str) -> str:
 
 
 WIDE_TABLE = 8  # columns: a table with more is laid out row by row (each cell labelled) at every width
+SMALL_TABLE = 3  # columns: a table with at most these stays a table on a narrow screen too (it fits 320 px)
 
 _TABLE_HEAD = re.compile(r"<table>(<thead><tr>(?:<th[^>]*>.*?</th>)+</tr></thead>)", re.S)
 
@@ -67,11 +69,12 @@ _TABLE_HEAD = re.compile(r"<table>(<thead><tr>(?:<th[^>]*>.*?</th>)+</tr></thead
 def labelled_tables(html_text: str) -> str:
     """A table of more than :data:`WIDE_TABLE` columns marked ``class="wide"``: the page lays it out
     one block per row, each cell after its column's heading (set by the page's script from the
-    heading row: 70 KB less than writing it into every cell), as it does every table on a narrow
-    screen."""
+    heading row: 70 KB less than writing it into every cell), as it does every table of more than
+    :data:`SMALL_TABLE` columns on a narrow screen (those are marked ``class="small"``)."""
     def one(m):
         columns = m.group(1).count("<th")
-        return (f'<table class="wide">' if columns > WIDE_TABLE else "<table>") + m.group(1)
+        kind = "wide" if columns > WIDE_TABLE else "small" if columns <= SMALL_TABLE else None
+        return (f'<table class="{kind}">' if kind else "<table>") + m.group(1)
 
     return _TABLE_HEAD.sub(one, html_text)
 
@@ -118,24 +121,40 @@ def wide_quote(fragments) -> bool:
 
 
 def data_uri(name: str, data: bytes) -> str:
-    """The figure as a data URI; a PNG is embedded as lossless WebP of its palette reduced to 16
-    colours (:func:`sixteen_colours`; 30 % fewer bytes than the PNG)."""
+    """The figure as a data URI; a PNG is embedded as lossless WebP of its palette reduced for the page
+    (:func:`page_palette`)."""
     if name.endswith(".png"):
         return f"data:image/webp;base64,{base64.b64encode(lossless_webp(data)).decode()}"
     mime = mimetypes.guess_type(name)[0] or "application/octet-stream"
     return f"data:{mime};base64,{base64.b64encode(data).decode()}"
 
 
-PAGE_COLOURS = 16  # WebP packs two pixels of a palette of at most 16 colours into a byte
+PAGE_COLOURS = 16  # WebP packs two pixels of a palette of at most 16 colours into a byte, four of at most 4
+#: how the page's four-colour figures draw a grey pixel (value v of r = g = b): white from LIGHT up, the
+#: grid's grey from DARK up, black below (text, axes; their antialiasing steps split between the three)
+LIGHT, DARK, GRID = 240, 160, 224
+#: an antialiasing step of a curve at least this far from white towards its colour is drawn in that colour
+THRESHOLD = 0.5
 
 
-def sixteen_colours(im):
-    """A palette image of 17 to 64 colours (a line figure: the style's curves, text and grid with 6
-    antialiasing steps each) with its 16 most used colours kept exactly and each other one, a rare
-    antialiasing step, drawn as the nearest kept colour (RGB); any other image as it is.  On the
-    report's figures: 10 % fewer WebP bytes, no difference a reader sees."""
+def page_palette(im):
+    """The palette the page embeds a figure with (the full-quality PNG stays in reports/figures/).
+
+    A line figure (:data:`verify.style.LINE_PALETTE`: white, and 6 antialiasing steps towards each of
+    :data:`verify.style.LINE_COLOURS`) whose curves are of one colour (every caption's figure: the runs in
+    :data:`verify.style.RUN`, black text, the grey grid) is drawn in four colours: white, the grid's grey,
+    black and that colour, a curve's antialiasing step taking the curve's colour from half-way on
+    (:data:`THRESHOLD`) and a grey going to the nearest of the three greys (:data:`LIGHT`, :data:`DARK`).
+    WebP packs four such pixels to a byte: the figures' bytes on the page fall from 0.86 to about 0.55 MB,
+    the text and curves lose their smoothing, not a stroke.  Any other line figure keeps its
+    :data:`PAGE_COLOURS` most used colours exactly, the rarer steps drawn as the nearest kept one (RGB);
+    any other image (colour maps) as it is.
+    """
     import numpy as np
     from PIL import Image as PILImage
+
+    from ..style import LINE_COLOURS
+    from matplotlib.colors import to_rgb
 
     if im.mode != "P":
         return im
@@ -143,19 +162,49 @@ def sixteen_colours(im):
     palette = np.array(im.getpalette()[:768], float).reshape(-1, 3)
     counts = np.bincount(index.ravel(), minlength=len(palette))
     used = np.nonzero(counts)[0]
-    if not PAGE_COLOURS < len(used) <= 64:
+    if len(used) <= 4 or len(used) > 64:
         return im
-    keep = np.sort(used[np.argsort(-counts[used], kind="stable")[:PAGE_COLOURS]])
-    lut = np.zeros(len(palette), int)
-    lut[used] = np.argmin(((palette[used][:, None, :] - palette[keep][None, :, :]) ** 2).sum(-1), axis=1)
+    white = np.full(3, 255.0)
+    hues = [np.round(np.array(to_rgb(c)) * 255) for c in LINE_COLOURS]
+    hues = [h for h in hues if np.ptp(h) > 0]  # the curves' colours (the greys are handled by value)
+    target, fits = {}, True
+    for u in used:
+        colour = palette[u]
+        if np.ptp(colour) == 0:
+            v = colour[0]
+            target[u] = (255.0,) * 3 if v >= LIGHT else (float(GRID),) * 3 if v >= DARK else (0.0,) * 3
+            continue
+        best = None
+        for hue in hues:
+            d = hue - white
+            t = float(np.clip(np.dot(colour - white, d) / np.dot(d, d), 0, 1))
+            miss = float(np.sum((white + t * d - colour) ** 2))
+            if best is None or miss < best[0]:
+                best = (miss, t, tuple(hue))
+        fits &= best[0] <= 3.0  # within rounding of a step of the style's ramps
+        target[u] = best[2] if best[1] >= THRESHOLD else (255.0,) * 3
+    kept = [(255.0,) * 3, (float(GRID),) * 3, (0.0,) * 3]
+    kept += sorted(set(target.values()) - set(kept))
+    if fits and len(kept) <= 4:
+        lut = np.zeros(len(palette), int)
+        for u in used:
+            lut[u] = kept.index(target[u])
+        colours = np.array(kept, float)
+    else:
+        if len(used) <= PAGE_COLOURS:
+            return im
+        keep = np.sort(used[np.argsort(-counts[used], kind="stable")[:PAGE_COLOURS]])
+        lut = np.zeros(len(palette), int)
+        lut[used] = np.argmin(((palette[used][:, None, :] - palette[keep][None, :, :]) ** 2).sum(-1), axis=1)
+        colours = palette[keep]
     out = PILImage.fromarray(lut[index].astype(np.uint8), "P")
-    out.putpalette(palette[keep].astype(np.uint8).tobytes())
+    out.putpalette(colours.astype(np.uint8).tobytes())
     return out
 
 
 def lossless_webp(png: bytes) -> bytes:
-    """``png`` re-encoded as lossless WebP, its palette first reduced by :func:`sixteen_colours` (Pillow, method 6: 52 s for the report's figures once, against
-    2 s for method 4, for 8.5 KB less, which keeps the page under its 1.5 MB bound), remembered in the job
+    """``png`` re-encoded as lossless WebP, its palette first reduced by :func:`page_palette` (Pillow, method 6:
+    about a minute for the report's figures once, against 2 s for method 4, for a few KB less), remembered in the job
     cache's folder by the PNG's sha256 (a pure function of the bytes: the page is the same whether it was
     remembered or not, and a figure pays the encoding only when it changes)."""
     import hashlib
@@ -165,14 +214,14 @@ def lossless_webp(png: bytes) -> bytes:
     from ..provenance import write_atomic
     from .cache import default_folder
 
-    memo = default_folder() / f"webp6-{PAGE_COLOURS}" / hashlib.sha256(png).hexdigest()
+    memo = default_folder() / "webp6-page-palette-3" / hashlib.sha256(png).hexdigest()
     try:
         return memo.read_bytes()
     except OSError:
         pass
     buf = io.BytesIO()
     with PILImage.open(io.BytesIO(png)) as im:
-        sixteen_colours(im).save(buf, "WEBP", lossless=True, quality=100, method=6, exact=True)
+        page_palette(im).save(buf, "WEBP", lossless=True, quality=100, method=6, exact=True)
     try:
         write_atomic(memo, buf.getvalue())
     except OSError:
@@ -215,6 +264,6 @@ def render_html(results: dict, images: dict, benchmarks: Optional[dict] = None) 
             })
         blocks.append({"anchor": anchor, "title": title, "html": None, "claims": cards})
     prov = results["provenance"]
-    return _environment().get_template("report.html.j2").render(
+    return typeset_prose(_environment().get_template("report.html.j2").render(
         blocks=blocks, provenance=prov, failures=results.get("failures", []),
-        commit=(prov.get("source_commit") or {}).get("commit") or "unknown")
+        commit=(prov.get("source_commit") or {}).get("commit") or "unknown"))

@@ -89,7 +89,7 @@ def _first(quote) -> str:
     return quote if isinstance(quote, str) else " ... ".join(quote)
 
 
-S_INV = r"$\mathrm{s}^{-1}$"
+S_INV = "s⁻¹"  # a unit is upright: plain text, not math (MathML sets a lone letter in italics)
 
 
 def render_answers(s: dict) -> list:
