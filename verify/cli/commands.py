@@ -252,20 +252,30 @@ def _prove(args, directory, say) -> int:
 
 
 def cmd_score(args, session: Session) -> int:
+    """``score RUN --case NAME [--min-digits D]``: the table; exit 1 below D or for a partial run."""
     from pathlib import Path
 
     from ..reference import DIRECTORY
     from ..scoring import START_TOLERANCE, score
 
-    tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-6"))
+    tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-9"))
     if not tol < 1:  # a tolerance of a whole scale or more (or one that overflows to inf) checks no start at all
         raise UsageError(f"--start-tol {args.start_tol}: allowed a fraction of each component's scale below 1, "
-                         "such as 1e-6")
+                         "such as 1e-9")
+    minimum = None if args.min_digits is None else float(_decimal(args.min_digits, "--min-digits", "6"))
     try:
         result = score(args.run_file, args.case, directory=Path(args.dir) if args.dir else DIRECTORY, start_tolerance=tol)
     except ValueError as err:  # InvalidRun and an unknown case: bad input
         raise UsageError(str(err)) from None
-    session.emit(_dumps(result.to_record()) if args.format == "json" else result.table())
+    record = result.to_record()
+    why = None if minimum is None else result.failure(minimum)
+    if minimum is not None:
+        record["min_digits_required"], record["passed"] = minimum, why is None
+    session.emit(_dumps(record) if args.format == "json" else result.table()
+                 + ("" if minimum is None else f"\n{'PASS' if why is None else 'FAIL'}: "
+                    + (f"at least {minimum:g} digits over the whole case" if why is None else why)))
+    if why is not None:
+        raise RunFailed(f"score {args.case}: {why}")
     return 0
 
 

@@ -91,8 +91,11 @@ def parser() -> argparse.ArgumentParser:
     sc.add_argument("--case", required=True, help="the reference case (reports/reference/index.json)")
     sc.add_argument("--dir", default=None, help="the reference set's folder (default: reports/reference)")
     sc.add_argument("--start-tol", default=None,
-                    help="how closely the start must match the case, as a fraction of each component's scale "
-                         "(default 1e-6)")
+                    help="how closely the start must match the case, as a fraction of each component's own scale "
+                         "(default 1e-12; a looser one is said in the verdict)")
+    sc.add_argument("--min-digits", default=None, metavar="D",
+                    help="exit 1 unless the run agrees to at least D digits over the whole case (for CI); a run that "
+                         "stops before the case's end never passes")
     sc.add_argument("--format", choices=("json", "text"), default="text")
     sc.set_defaults(run=cmd_score)
 

@@ -8,10 +8,12 @@
 >>> from verify import score
 >>> s = score("my_run.csv", "disk-standard-1")      # doctest: +SKIP
 >>> s.min_digits, s.components["psi"].median_digits, s.energy_rel_drift, s.verdict   # doctest: +SKIP
+>>> from verify.scoring import assert_scores
+>>> assert_scores("my_run.csv", "disk-standard-1", min_digits=6)   # in a pytest test: fails below 6 digits  # doctest: +SKIP
 """
 from ..frames import BODIES_ON_PLANE, FORMS
 from .runs import InvalidRun, read_run
-from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, score
+from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, assert_scores, score
 
 __all__ = ["BODIES_ON_PLANE", "DIGITS_RESOLVED", "FORMS", "START_TOLERANCE", "ComponentScore", "InvalidRun", "Score",
-           "read_run", "score"]
+           "assert_scores", "read_run", "score"]

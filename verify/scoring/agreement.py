@@ -6,11 +6,25 @@ Digits of agreement of component y at time t are ``-log10(|y_run - y_ref| / scal
   reduced to [-pi, pi]): 0 digits is the worst possible disagreement of an angle, and a tool
   that reports angles in (-pi, pi] scores as one that keeps them continuous;
 * rates thetadot, phidot, psidot: one scale, the largest |rate| of the reference over the
-  run's times (a per-component scale would make thetadot of a steady motion, exactly 0,
+  whole case (a per-component scale would make thetadot of a steady motion, exactly 0,
   infinitely demanding);
-* positions x, y: the largest horizontal distance of C from the origin over the run's times,
+* positions x, y: the largest horizontal distance of C from the origin over the whole case,
   and at least 1 (lengths are in units of R, or a: a body that stays near its start is judged
   against its own size).
+
+The scales are the case's (its stored grid from 0 to t_end), never the run's: a run's digits do not
+depend on which output times it reports, and a run that stops early is judged on the same scale.
+
+The start is checked component by component against that component's *own* scale (the largest
+|value| of that component over the case, or the shared scale above where the component stays 0):
+at :data:`START_TOLERANCE` = 1e-12 by default.  The reference's start is an exact decimal; a double
+read from it is within 2^-53 relative, and form (b) read back to Euler angles adds a few roundings of
+trigonometric functions whose condition here is O(1): 1e-12 leaves three orders of magnitude for
+that and refuses a start given to 7 digits, in single precision, in other units or from another
+case.  ``start_tolerance`` loosens it by request, and the verdict says by how much.
+
+A run that stops before the case's t_end is *partial*: scored on what it covers, said in the verdict,
+and never passes a ``min_digits`` (:func:`assert_scores`, ``verify score --min-digits``).
 
 A double holds a value to about 16 digits; an error below one unit roundoff of the scale
 (2^-53) is shown as ``DIGITS_RESOLVED`` = 15.95 digits, the most a run of doubles can score.
@@ -39,9 +53,8 @@ from .runs import InvalidRun, exact_decimal, read_run
 
 DIGITS_RESOLVED = -math.log10(2.0 ** -53)
 #: A start (and, for form (b), the constraints and the rotation at t = 0) must agree with the
-#: case to this fraction of each component's scale: a tool in single precision (7 digits)
-#: meets it; a start in other units, another frame or from another case does not.
-START_TOLERANCE = 1e-6
+#: case to this fraction of each component's own scale (argued in the module's docstring).
+START_TOLERANCE = 1e-12
 ANGLES = ("theta", "phi", "psi")
 WRAPPED = ("phi", "psi")
 RATES = ("thetadot", "phidot", "psidot")
@@ -107,6 +120,26 @@ class Score:
     contact_velocity: Optional[float]
     rotation_defect: Optional[float]
     verdict: str = field(default="")
+    t_end: float = math.nan  # the case's end time
+    start_tolerance: float = START_TOLERANCE
+
+    @property
+    def partial(self) -> bool:
+        """True when the run stops before the case's t_end."""
+        return bool(self.t[-1] < self.t_end)
+
+    def passes(self, min_digits: float) -> bool:
+        """At least ``min_digits`` everywhere, over the whole case."""
+        return not self.partial and self.min_digits >= min_digits
+
+    def failure(self, min_digits: float) -> Optional[str]:
+        """Why the run does not pass ``min_digits`` (one line naming the weakest component and time), or None."""
+        if self.partial:
+            return (f"partial run: it stops at t = {self.t[-1]:g} s, the case {self.case} runs to {self.t_end:g} s "
+                    f"({self.min_digits:.1f} digits on what it covers)")
+        if self.min_digits < min_digits:
+            return (f"{self.min_digits:.2f} digits, below the {min_digits:g} required: the weakest is {self.worst}")
+        return None
 
     def to_record(self) -> dict:
         def num(v):
@@ -118,6 +151,7 @@ class Score:
                 "components": {n: c.to_record() for n, c in self.components.items()},
                 "energy_rel_drift": num(self.energy_rel_drift), "contact_height": num(self.contact_height),
                 "contact_velocity": num(self.contact_velocity), "rotation_defect": num(self.rotation_defect),
+                "t_end_case": self.t_end, "partial": self.partial, "start_tolerance": self.start_tolerance,
                 "verdict": self.verdict}
 
     def table(self) -> str:
@@ -182,7 +216,9 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
         state, R, w = b_to_euler(columns)
 
     ref, source = _reference(record, t)
-    scales = _scales(ref)
+    case_states = _case_states(record)
+    scales = _scales(case_states)
+    own = _own_scales(case_states, scales)
     height = speed = defect = None
     if form != "euler":
         defect_t = rotation_defect(R, columns)
@@ -200,10 +236,11 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
 
     for n in STATE_NAMES:
         start = float(record["initial_state"][n])
-        err = abs(_difference(n, state[n][0], start)) / scales[n][0]
+        err = abs(_difference(n, state[n][0], start)) / own[n]
         if not err <= start_tolerance:
             raise InvalidRun(f"the start does not match case {case}: {n}(0) = {float(state[n][0])!r}, the case's {start!r} "
-                             f"(off by {err:.1e} of its scale {scales[n][0]:.4g}, more than {start_tolerance:g})")
+                             f"(off by {err:.1e} of its own scale {own[n]:.4g}, more than {start_tolerance:g}; "
+                             "--start-tol loosens the check by request)")
     digits, components = {}, {}
     for n in STATE_NAMES:
         rel = np.abs(_difference(n, state[n], ref[n])) / scales[n][0]
@@ -212,12 +249,31 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
         j = int(np.argmin(d))
         components[n] = ComponentScore(n, float(d[j]), float(t[j]), float(np.median(d)), float(d[-1]), *scales[n])
     worst = min(components.values(), key=lambda c: c.min_digits)
-    energy = _energy(model)(*[state[n] for n in STATE_NAMES], *[params[p.name] for p in get_model(model).parameters])
+    if form == "euler":
+        energy = _energy(model)(*[state[n] for n in STATE_NAMES], *[params[p.name] for p in get_model(model).parameters])
+    else:
+        energy = own_energy(model, columns, R, w, params)
     energy = np.broadcast_to(energy, t.shape)
     drift = float(np.max(np.abs(energy - energy[0])) / abs(energy[0]))
     result = Score(case, model, form, t, source, digits, components, worst.min_digits,
-                   f"{worst.name} at t = {worst.t_min:g}", drift, height, speed, defect)
+                   f"{worst.name} at t = {worst.t_min:g}", drift, height, speed, defect, t_end=float(record["t_end"]),
+                   start_tolerance=start_tolerance)
     return _with_verdict(result)
+
+
+def own_energy(model: str, columns: dict, R: np.ndarray, w: np.ndarray, params: dict) -> np.ndarray:
+    """E per M L^2 from a form (b) run's own quantities: its velocity, height and angular velocity.
+
+    E = |v|^2 / 2 + (I1 (w1^2 + w2^2) + I3 w3^2) / 2 + g z, with w_i = (R^T w)_i the body components
+    and I1, I3 the case's moments of inertia in units of M L^2 (M the whole mass: the hurricane balls'
+    2 m; the disk's I1 = k, I3 = 2 k).  Not the energy of the run's state converted to Euler angles:
+    that would hide a run whose velocity or height is not the one its orientation implies.
+    """
+    i1, i3 = (params["k"], 2 * params["k"]) if "k" in params else (params["I1"], params["I3"])
+    body = np.einsum("jin,jn->in", R, w)  # R^T w at every time
+    v = np.array([columns["vx"], columns["vy"], columns["vz"]], float)
+    return (0.5 * np.sum(v * v, axis=0) + 0.5 * (i1 * (body[0] ** 2 + body[1] ** 2) + i3 * body[2] ** 2)
+            + params["g"] * np.asarray(columns["z"], float))
 
 
 def _with_verdict(s: Score) -> Score:
@@ -226,9 +282,26 @@ def _with_verdict(s: Score) -> Score:
     constraints = ("constraints held by construction (form euler)" if s.contact_height is None else
                    f"contact height {s.contact_height:.1e}, contact velocity {s.contact_velocity:.1e}")
     shown = f">= {DIGITS_RESOLVED:.2f} (a double's resolution)" if s.min_digits >= DIGITS_RESOLVED else f"{s.min_digits:.1f}"
-    line = (f"verdict: agrees with {s.case} to {shown} digits over t in [{s.t[0]:g}, {s.t[-1]:g}] "
-            f"(fewest: {s.worst}); energy drift {s.energy_rel_drift:.1e}; {constraints}")
+    cover = (f"PARTIAL: only t in [{s.t[0]:g}, {s.t[-1]:g}] of the case's [0, {s.t_end:g}]" if s.partial
+             else f"over the whole case, t in [{s.t[0]:g}, {s.t[-1]:g}]")
+    start = (f"start within {s.start_tolerance:g} of each component's scale"
+             + ("" if s.start_tolerance == START_TOLERANCE else f" (loosened by request from {START_TOLERANCE:g})"))
+    line = (f"verdict: agrees with {s.case} to {shown} digits {cover} (fewest: {s.worst}); "
+            f"energy drift {s.energy_rel_drift:.1e}; {constraints}; {start}")
     return replace(s, verdict=line)
+
+
+def assert_scores(run, case: str, min_digits: float, **options) -> Score:
+    """Score ``run`` and raise AssertionError (for pytest) unless it has ``min_digits`` over the whole case.
+
+    The message names the weakest component and its time, or says the run is partial.  Returns the
+    :class:`Score` when it passes.  ``options`` go to :func:`score` (``start_tolerance``, ``directory``).
+    """
+    result = score(run, case, **options)
+    why = result.failure(min_digits)
+    if why is not None:
+        raise AssertionError(f"{case}: {why}. {result.verdict}")
+    return result
 
 
 def _difference(name: str, a, b):
@@ -238,12 +311,29 @@ def _difference(name: str, a, b):
     return d
 
 
+def _case_states(record: dict) -> dict:
+    """The case's stored state over its whole grid, as float arrays."""
+    return {n: np.array([float(v) for v in record["state"][n]["value"]]) for n in STATE_NAMES}
+
+
 def _scales(ref: dict) -> dict:
+    """The scales of the digits, from the case's own states over its whole grid (see the module)."""
     rate = max(float(np.max(np.abs(ref[n]))) for n in RATES)
     length = max(1.0, float(np.max(np.hypot(ref["x"], ref["y"]))))
     out = {n: (math.pi, "pi") for n in ANGLES}
-    out.update({n: (rate, "largest |rate| of the reference") for n in RATES})
-    out.update({n: (length, "largest horizontal distance of C from the origin, at least 1") for n in ("x", "y")})
+    out.update({n: (rate, "largest |rate| of the case") for n in RATES})
+    out.update({n: (length, "largest horizontal distance of C from the origin over the case, at least 1")
+                for n in ("x", "y")})
+    return out
+
+
+def _own_scales(ref: dict, scales: dict) -> dict:
+    """Each component's own scale for the start check: its largest |value| over the case (pi for the
+    wrapped angles), the shared scale where it stays at 0."""
+    out = {}
+    for n in STATE_NAMES:
+        largest = math.pi if n in WRAPPED else float(np.max(np.abs(ref[n])))
+        out[n] = largest if largest > 0 else scales[n][0]
     return out
 
 
