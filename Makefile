@@ -7,7 +7,7 @@ STAMP := $(VENV)/.installed
 export HEYOKA_CACHE_DIR ?= $(CURDIR)/.heyoka-cache
 export MPLBACKEND := Agg
 
-.PHONY: report test test-all bench clean
+.PHONY: report test test-all bench engines clean
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -27,6 +27,12 @@ test-all: $(STAMP)
 
 bench: $(STAMP)
 	$(PY) -m verify bench
+
+# The other engines (Exudyn, MuJoCo, PyBullet, Drake) on the reference cases: reports/engines.json.
+# Not part of `make report` or `make test`; needs the engines extra.
+engines: $(STAMP)
+	$(PY) -m pip install --quiet -e '.[engines]'
+	$(PY) -m verify engines
 
 clean:
 	rm -rf $(VENV) .heyoka-cache .pytest_cache

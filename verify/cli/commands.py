@@ -345,6 +345,24 @@ def cmd_report(args, session: Session) -> int:
     return 0
 
 
+def cmd_engines(args, session: Session) -> int:
+    """``engines``: the leaderboard (verify.leaderboard): every engine adapter on the reference cases."""
+    from ..leaderboard import CASES, adapters, run_board, write_board
+
+    found = adapters()
+    for name in args.engine or ():
+        if name not in found:
+            raise UsageError(f"--engine {name!r}: no adapter examples/engines/{name}_adapter.py; allowed: "
+                             f"{', '.join(found) or 'none found'}")
+    out = _output_folder(args.out)
+    cases = CASES[:1] if args.quick else CASES
+    board = run_board(args.engine, cases, progress=lambda s: print(s, file=sys.stderr, flush=True))
+    written = write_board(board, out)
+    session.emit(f"wrote {', '.join(str(p) for p in written)} ({len(board['rows'])} runs); "
+                 "next: make report (its Engines section reads them)")
+    return 0
+
+
 def cmd_bench(args, session: Session) -> int:
     from ..bench import run_benchmarks, write_benchmarks
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 
 from .arguments import UsageError
-from .commands import (cmd_bench, cmd_models, cmd_plot, cmd_reference, cmd_report, cmd_score, cmd_spindown, cmd_starts,
+from .commands import (cmd_bench, cmd_engines, cmd_models, cmd_plot, cmd_reference, cmd_report, cmd_score, cmd_spindown, cmd_starts,
                        cmd_sweep, cmd_threshold)
 from .animate_command import add_parser as add_animate_parser
 from .figure_command import add_parser as add_figure_parser
@@ -118,6 +118,13 @@ def parser() -> argparse.ArgumentParser:
     r.add_argument("--render-only", action="store_true",
                    help="compute nothing: render REPORT.md and report.html from the folder's results.json")
     r.set_defaults(run=cmd_report)
+
+    en = sub.add_parser("engines", help="run the other physics engines' adapters on the reference cases and score "
+                                        "them (reports/engines.json; minutes to an hour)")
+    en.add_argument("--out", default="reports", help="output folder (default: reports)")
+    en.add_argument("--engine", action="append", metavar="NAME", help="only this adapter (repeatable), e.g. mujoco")
+    en.add_argument("--quick", action="store_true", help="the disk case only")
+    en.set_defaults(run=cmd_engines)
 
     b = sub.add_parser("bench", help="benchmarks: solve, sweeps and maps against bare heyoka, energy error, work against "
                                      "precision, JIT cost")

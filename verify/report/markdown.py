@@ -91,7 +91,7 @@ def _overview(results: dict) -> list:
     return lines
 
 
-def sections(results: dict, benchmarks: Optional[dict]) -> list:
+def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] = None) -> list:
     """The report as ``(anchor, title, markdown body, claims or None)`` in reading order.
 
     A claims section carries its claim records too, so the page can lay each out as a card;
@@ -135,15 +135,18 @@ def sections(results: dict, benchmarks: Optional[dict]) -> list:
     if studies.get("friction") is not None:  # absent from a results.json made before the section
         out += guarded("Friction", lambda: _split_h2("\n".join(render_friction(studies["friction"],
                                                                                studies.get("dissipation")))))
+    from .engines import render_markdown as render_engines
+
+    out += _split_h2("\n".join(render_engines(engines)))
     out += _split_h2("\n".join(benchmarks_section(benchmarks)))
     out.append(("provenance", "Provenance", "```\n" + json.dumps(results["provenance"], indent=2) + "\n```", None))
     return out
 
 
-def render_markdown(results: dict, benchmarks: Optional[dict] = None) -> str:
+def render_markdown(results: dict, benchmarks: Optional[dict] = None, engines: Optional[dict] = None) -> str:
     """REPORT.md: every section of :func:`sections` under its ``##`` heading."""
     lines = ["# Verification report", ""]
-    for anchor, title, body, _ in sections(results, benchmarks):
+    for anchor, title, body, _ in sections(results, benchmarks, engines):
         lines += [f'## <a id="{anchor}"></a>{title}', "", body.strip("\n"), ""]
     return "\n".join(lines)
 

@@ -237,12 +237,12 @@ def _environment() -> jinja2.Environment:
     return env
 
 
-def render_html(results: dict, images: dict, benchmarks: Optional[dict] = None) -> str:
+def render_html(results: dict, images: dict, benchmarks: Optional[dict] = None, engines: Optional[dict] = None) -> str:
     """The page.  ``images``: file name -> bytes of every figure results.json names."""
     alts = {f["file"]: f["alt"] for f in results.get("figures", ())}
     r = _Renderer(images, alts)
     blocks = []
-    for anchor, title, body, claims in sections(results, benchmarks):
+    for anchor, title, body, claims in sections(results, benchmarks, engines):
         if claims is None:
             blocks.append({"anchor": anchor, "title": title, "html": r.block(body), "claims": None})
             continue

@@ -104,7 +104,11 @@ def render(out="reports", say=None) -> None:
         except FileNotFoundError:
             say(f"  figure {f['file']} named in results.json is missing from {out / 'figures'}")
     benchmarks = latest_benchmarks(out)
-    files = {"REPORT.md": render_markdown(results, benchmarks), "report.html": render_html(results, images, benchmarks),
+    engines = latest_engines(out)
+    if engines is not None and (out / "figures" / "engines.png").exists():
+        images["engines.png"] = (out / "figures" / "engines.png").read_bytes()
+    files = {"REPORT.md": render_markdown(results, benchmarks, engines),
+             "report.html": render_html(results, images, benchmarks, engines),
              "conservation.md": conservation_markdown(results["conservation"], results["provenance"]),
              "conservation.json": json.dumps({"rows": results["conservation"], "provenance": results["provenance"]},
                                              indent=2) + "\n"}
@@ -129,6 +133,14 @@ def write_report(out="reports", fresh: bool = False, render_only: bool = False, 
     if failures:
         raise ReportIncomplete(f"{len(failures)} job(s) failed: " + ", ".join(f["job"] for f in failures)
                                + "; the report says so and lacks what they compute")
+
+
+def latest_engines(out):
+    """The engines' board in ``out/engines.json`` (written by ``make engines``), or None."""
+    path = Path(out) / "engines.json"
+    if not path.exists():
+        return None
+    return json.loads(path.read_text())
 
 
 def latest_benchmarks(out):
