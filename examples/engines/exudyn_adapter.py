@@ -36,7 +36,8 @@ Pitfalls (what is silently wrong at defaults)
 1. The default step: ``SimulationSettings()`` has numberOfSteps = 100 for endTime = 1, i.e. dt = 0.01
    (kept as dt for longer runs).  The solver is second order and the disk's rates reach 266 s^-1:
    at dt = 0.01 the disk of disk-standard-1 has no correct digit (-0.6), energy off by 66 %,
-   and the hoop (hoop-general-10) passes through flat (theta > pi/2) within 2 s.  No warning.
+   and the hoop (hoop-general-10) passes through flat (theta >= pi/2 at t = 1.69 s, up to 2.76
+   rad: the ideal joint keeps the disc on the plane upside down; outcome "fell").  No warning.
 2. Default numerical damping: generalized-alpha's spectralRadius = 0.9 (dissipative); 0.5 costs a
    digit at dt = 2^-10.  At small dt it no longer matters (rho = 0.9 and 1 within 0.3 digits).
 3. The normal (height) constraint of ObjectJointRollingDisc holds the contact point's VELOCITY,
@@ -63,20 +64,34 @@ Sweep (disk-standard-1, 0..1 s, 33 grid times, this machine, wall = SolveDynamic
 --------------------------------------------------------------------------------------
 GeneralizedAlpha, Euler parameters, modified Newton 1e-8, rho = 1 unless noted::
 
-    dt        min digits  final  energy drift  contact height  wall s
-    0.01 (default, rho 0.9) -0.57  (0.1-s grid)  6.6e-1  1.2e-1   0.013
-    2^-10       1.24      1.47    2.9e-2        1.2e-3          0.015
-    2^-12       2.45      2.62    2.1e-3        7.5e-5          0.05
-    2^-14       3.66      3.82    1.3e-4        4.7e-6          0.20
-    2^-16       4.86      5.02    5.3e-6        2.9e-7          0.79
-    2^-18       5.73      6.22    3.8e-6        1.8e-8          3.7
-    2^-20       5.51      6.02    4.8e-6        1.2e-9          13.4
-    2^-18 rho 0.9               6.04  6.21    1.5e-7          1.9e-8     4.2
-    2^-18 Rxyz, full Newton 1e-12 (best)  6.09  6.26  1.5e-7   1.7e-8     5.2
-    2^-17 Rxyz, full Newton 1e-12         5.48  5.65  5.9e-7   6.8e-8     2.4
+    dt      variant                          min dig  final  energy  z_P     wall s
+    0.01    default (rho 0.9, 0.01-s output)  -0.57   -0.39  6.6e-1  1.2e-1  0.013
+    2^-10                                      1.24    1.47  2.9e-2  1.2e-3  0.015
+    2^-12                                      2.45    2.62  2.1e-3  7.5e-5  0.05
+    2^-14                                      3.66    3.82  1.3e-4  4.7e-6  0.20
+    2^-16                                      4.86    5.02  5.3e-6  2.9e-7  0.79
+    2^-18                                      5.73    6.22  3.8e-6  1.8e-8  3.7
+    2^-20                                      5.51    6.02  4.8e-6  1.2e-9  13.4
+    2^-18   rho 0.9                            6.04    6.21  1.5e-7  1.9e-8  4.2
+    2^-18   Rxyz, full Newton 1e-12 (best)     6.09    6.26  1.5e-7  1.7e-8  5.2
+    2^-17   Rxyz, full Newton 1e-12            5.48    5.65  5.9e-7  6.8e-8  2.4
+    2^-20   full Newton 1e-12                  solver stopped at t = 0.5625
     2^-16 Rxyz / rotation vector / TrapezoidalIndex2: 4.88 / 4.90 / 4.86 (all second order)
 
 The best setting (``BEST``): dt = 2^-18, rho = 1, Rxyz nodes, full Newton, tolerances 1e-12/1e-14.
+
+Measured (``python examples/engines/exudyn_adapter.py --case C --setting S [--t-end T] --json``)::
+
+    case              setting  t     outcome  min dig  final  energy   z_P      wall s
+    disk-standard-1   default  1     ok       -0.57    -0.39  6.6e-1   1.2e-1   0.010
+    disk-standard-1   best     1     ok        6.09     6.26  1.5e-7   1.7e-8   6.4
+    hoop-general-10   default  10    fell     -1.18    -1.15  4.3      1.5e-1   0.09
+    hoop-general-10   best     2     ok        6.06     6.06  9.8e-9   2.2e-9   11.9
+    ring-standard-10  default  10    ok        0.54     0.54  1.3e-3   6.3e-4   0.028
+    ring-standard-10  best     2     ok        8.00     8.00  1.5e-10  1.1e-10  13.6
+
+(final = the fewest final digits of any component; z_P = max |contact height|; runs that stop
+before t_end are scored on [0, t] by ``verify.score``.)
 """
 from __future__ import annotations
 
