@@ -1,0 +1,344 @@
+"""PyBullet adapter: a reference case of a body rolling on the plane, run in PyBullet and scored.
+
+``run_case(case, setting="default" | "best" | dict, t_end=None) -> dict`` (JSON-ready but for the
+keys ``_score``, the Score, and ``_columns``, the run); ``python examples/engines/pybullet_adapter.py
+--case disk-standard-1 --setting best [--t-end 1] [--out run.csv]`` prints the score table.
+Measured with pip ``pybullet`` 3.2.7 (prebuilt x86_64 wheel, double precision), Python 3.11.
+
+Model: a cylinder (GEOM_CYLINDER, radius 1, half-height h) of mass 1 with the case's inertia set
+by ``changeDynamics(localInertiaDiagonal=(I1, I1, I3))``, on a GEOM_PLANE at z = 0, gravity
+(0, 0, -980), lateral friction 1 on both (Bullet multiplies the two: mu = 1; 10 and 100 change
+nothing: it does not slip).  A cylinder touches on its rim edge, r_P = -e2 - h e3: exactly the
+ring model with h of the case.  The thin disk (r_P = -e2) is a cylinder of h = 1e-6: the model
+difference, h cos(theta) <= 1e-6 in C's height, is below the scorer's start tolerance (1e-6) and
+far below the engine's error; a "thin" cylinder of h = 0.01 is refused by the scorer at t = 0
+(contact height 3.6e-3 for the disk model).  Start: ``verify.frames.euler_to_b`` (for the thin
+disk with the ring model at that h), read back from PyBullet and checked to 1e-12 before running.
+Output: the quaternion form every k steps (k steps nearest 1/8 of the case's grid spacing) and
+the last step; those are not grid times, so the scorer re-integrates the reference in quad there
+(about 1 s for 250 times).  The scorer accepts a run that stops before t_end and scores it on
+[0, t_last] (it refuses only times beyond t_end or not starting at 0): the 10 s cases are run to 1 s.
+
+Measured (``python examples/engines/pybullet_adapter.py --table``: run_case for each case and setting, t_end 1 s;
+digits = Score.min_digits, final = the fewest final digits, E = energy drift, zP, vP = max contact
+height and velocity; wall = the stepping alone, 2 shared cores):
+
+  case              setting  outcome  digits  final   E        zP       vP       wall
+  disk-standard-1   default  fell     -0.16   0.36    9.9e-01  4.0e-01  3.1e+01  0.02 s
+  disk-standard-1   best     ok        1.70   2.65    3.1e-04  6.8e-07  7.6e-03  5.9-7.5 s
+  hoop-general-10   default  fell     -0.02   0.01    8.2e-01  2.0e-01  1.4e+01  0.01 s
+  hoop-general-10   best     ok        2.68   2.77    1.3e-04  6.5e-07  2.3e-03  6.6 s
+  ring-standard-10  default  ok       -0.11   0.00    3.5e-01  5.1e-02  1.5e+00  0.01 s
+  ring-standard-10  best     ok        3.40   3.40    2.9e-06  4.2e-07  6.1e-05  5.6 s
+
+Sweep (``--sweep``: disk-standard-1 to 1 s, best setting but dt; the error is first order in dt: +0.3
+digits per halving, and no other knob matters):
+
+  dt      2^-10  2^-12  2^-14  2^-16  2^-18  2^-20   (1/240 default: fell)
+  digits  -0.25   0.00   0.01   0.49   1.10   1.70
+  E       5.0e-1 1.3e-1 2.1e-2 4.9e-3 1.2e-3 3.1e-4
+  wall s  0.02   0.04   0.08   0.29   1.24   5.85
+
+At dt = 8.1e-6 on the same case these changed nothing (0.93 digits each): numSolverIterations
+10/50/200, useSplitImpulse 0, ERP/contactERP/frictionERP 0.9, enableConeFriction 0,
+constraintSolverType 1, lateral friction 10 or 100; ERP 0 lost 0.8 digits (the contact sinks
+5e-3).  useMaximalCoordinates (btRigidBody instead of a one-link btMultiBody) lost 0.15 digits.
+collisionMargin 1e-6 with contactSlop 0 took the ring from 2.83 to 3.10 digits at 2^-19 and the
+contact height from 5e-5 to 4e-7.  "best" = dt 2^-20 (a wall budget of about 6 s per simulated
+second; smaller steps keep gaining 0.3 digits per halving at twice the cost), 200 solver
+iterations, damping 0, margin 1e-6, contactSlop 0, restitution 0.
+
+Pitfalls (each silently wrong at defaults):
+
+* Units: PyBullet has none, but its defaults are tuned for metres and 1/240 s.  Here R = 1 and
+  g = 980, so one natural time sqrt(R/g) = 0.032 s is only 7.6 default steps: the disk and the
+  hoop fall flat and the thin cylinder then sinks through the plane (C at z = -0.30 by t = 0.8);
+  the ring loses 35 % of its energy in 1 s.
+* Default damping: linearDamping = angularDamping = 0.04 on every body (changeDynamics to 0):
+  at the best step it alone turns 3.4 digits on the ring into -0.05 (energy -27 % in 1 s).
+* Inertia: createMultiBody computes it from the collision shape; set localInertiaDiagonal after.
+* Quaternions are (x, y, z, w), scalar last; the scorer's is (w, x, y, z).  getBaseVelocity's
+  angular velocity is in world (inertial) components, as the scorer wants; the base position is
+  the centre of mass (no inertial-frame offset given).
+* Contact geometry: the cylinder touches on the rim EDGE half a thickness off the mid-plane (the
+  coin); a thin disk needs h near 0 to be the disk model.  Bullet's collision margin (0.04 by
+  default, clamped to 0.1 of the smallest half-extent) rounds the rim: set collisionMargin.
+* Contact softness: with the default contactSlop and margin the contact sits 5e-5 into the
+  plane; ERP 0 lets it sink.  The no-slip condition is a velocity-level impulse at the contact
+  point of the step's start while the contact point moves round the rim: the error is first
+  order in dt whatever the solver settings (contact velocity 7.6e-3 at 2^-20).
+* The run is deterministic (same build), so the test's threshold allows for another build.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+if str(ROOT) not in sys.path:
+    sys.path.insert(0, str(ROOT))
+
+from models.symbols import STATE_NAMES  # noqa: E402
+from verify import score  # noqa: E402
+from verify.frames import MOTION, QUATERNION, euler_to_b  # noqa: E402
+from verify.reference.store import DIRECTORY  # noqa: E402
+
+COLUMNS = ("t",) + QUATERNION + MOTION
+
+#: What a new user writes to describe the body, everything else left at PyBullet's defaults
+#: (fixedTimeStep 1/240 s, 50 solver iterations, ERP 0.2, split impulse, damping 0.04,
+#: collision margin of the shape, multibody (reduced coordinates) base).
+DEFAULT = {"dt": 1 / 240, "friction": 1.0, "thin_half_height": 1e-6}
+
+#: Filled from the sweep (see the docstring's table).
+BEST = {"dt": 2.0 ** -20, "friction": 1.0, "thin_half_height": 1e-6, "damping": 0.0, "margin": 1e-6, "contact_slop": 0.0,
+        "solver_iterations": 200, "restitution": 0.0, "maximal": False}
+
+SETTINGS = {"default": DEFAULT, "best": BEST}
+#: a run whose tilt theta drops below this (rad) has fallen flat (the references stay above 0.236)
+FLAT = 0.1
+
+
+def load_case(case: str) -> dict:
+    return json.loads((DIRECTORY / f"{case}.json").read_text())
+
+
+def body_geometry(record: dict, setting: dict) -> dict:
+    """Mass 1, the case's inertia, and the cylinder's radius 1 and half-height."""
+    model = record["model"]["name"]
+    par = {k: float(v["decimal"]) for k, v in record["model"]["parameters"].items()}
+    if model == "disk":
+        k = par["k"]
+        return {"model": model, "I1": k, "I3": 2 * k, "h": float(setting.get("thin_half_height", 1e-3)),
+                "h_model": 0.0, "g": par["g"], "params": par}
+    if model == "ring":
+        return {"model": model, "I1": par["I1"], "I3": par["I3"], "h": par["h"], "h_model": par["h"],
+                "g": par["g"], "params": par}
+    raise ValueError(f"the PyBullet adapter runs the disk and the ring (a cylinder); not {model!r}")
+
+
+def _with_override(geo: dict, setting: dict) -> dict:
+    """A deliberately different inertia ``setting["inertia"] = (I1, I3)`` (negative controls only)."""
+    if "inertia" in setting:
+        geo = {**geo, "I1": float(setting["inertia"][0]), "I3": float(setting["inertia"][1])}
+    return geo
+
+
+def output_steps(record: dict, dt: float, t_end: float, per_grid: int = 8) -> list:
+    """(time, step): every k steps, k the whole number of steps nearest the case's grid spacing / per_grid.
+
+    The time is step * dt (the engine's own clock, exact for dt = 2^-n); such times are in
+    general not the stored grid's, so the scorer re-integrates the reference in quad there.
+    """
+    from fractions import Fraction
+
+    spacing = float(record["grid"][1]) - float(record["grid"][0])
+    k = max(1, round(spacing / per_grid / dt))
+    n_end = int(math.floor(t_end / dt + 1e-9))
+    steps = list(range(0, n_end + 1, k))
+    if steps[-1] != n_end:
+        steps.append(n_end)  # the run's last step is always written
+    return [(min(float(Fraction(n) * Fraction(dt)), t_end), n) for n in steps]
+
+
+def _read_c(p, cid, body) -> dict:
+    pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)
+    v, w = p.getBaseVelocity(body, physicsClientId=cid)  # world components; w is the inertial angular velocity
+    qx, qy, qz, qw = orn  # PyBullet: (x, y, z, w), scalar LAST
+    return dict(zip(QUATERNION + MOTION, (qw, qx, qy, qz) + tuple(pos) + tuple(v) + tuple(w)))
+
+
+def setup(record: dict, setting: dict):
+    """A DIRECT PyBullet client with the plane and the body at the case's start; (p, client, body, geometry, b0)."""
+    import pybullet as p
+
+    geo = _with_override(body_geometry(record, setting), setting)
+    start = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
+    # the start in form (b) for the model actually simulated: for the disk, the cylinder of
+    # half-height h touches at -e2 - h e3, i.e. the ring model with that h and the disk's inertia
+    if geo["model"] == "disk" and geo["h"] > 0:
+        model_b, params_b = "ring", {"I1": geo["I1"], "I3": geo["I3"], "h": geo["h"], "g": geo["g"]}
+    else:
+        model_b, params_b = geo["model"], geo["params"]
+    b0 = {c: float(v[0]) for c, v in euler_to_b(model_b, start, params_b).items()}
+    cid = p.connect(p.DIRECT)
+    p.setGravity(0, 0, -geo["g"], physicsClientId=cid)
+    phys = {"fixedTimeStep": setting["dt"]}
+    for key, name in (("solver_iterations", "numSolverIterations"), ("erp", "erp"), ("contact_erp", "contactERP"),
+                      ("friction_erp", "frictionERP"), ("split_impulse", "useSplitImpulse"),
+                      ("cone_friction", "enableConeFriction"), ("contact_slop", "contactSlop"),
+                      ("global_cfm", "globalCFM"), ("breaking_threshold", "contactBreakingThreshold"),
+                      ("substeps", "numSubSteps"), ("solver", "constraintSolverType")):
+        if key in setting:
+            phys[name] = setting[key]
+    p.setPhysicsEngineParameter(physicsClientId=cid, **phys)
+    plane_shape = p.createCollisionShape(p.GEOM_PLANE, physicsClientId=cid)
+    plane = p.createMultiBody(0, plane_shape, physicsClientId=cid)
+    shape = p.createCollisionShape(p.GEOM_CYLINDER, radius=1.0, height=2 * geo["h"], physicsClientId=cid)
+    orn = (b0["qx"], b0["qy"], b0["qz"], b0["qw"])
+    body = p.createMultiBody(1.0, shape, basePosition=(b0["x"], b0["y"], b0["z"]), baseOrientation=orn,
+                             useMaximalCoordinates=bool(setting.get("maximal", False)), physicsClientId=cid)
+    dyn = {"mass": 1.0, "localInertiaDiagonal": (geo["I1"], geo["I1"], geo["I3"]),
+           "lateralFriction": setting["friction"]}
+    for key, name in (("damping", "linearDamping"), ("damping", "angularDamping"),
+                      ("restitution", "restitution"), ("rolling_friction", "rollingFriction"),
+                      ("spinning_friction", "spinningFriction"), ("margin", "collisionMargin"),
+                      ("contact_stiffness", "contactStiffness"), ("contact_damping", "contactDamping")):
+        if key in setting:
+            dyn[name] = setting[key]
+    p.changeDynamics(body, -1, physicsClientId=cid, **dyn)
+    p.changeDynamics(plane, -1, lateralFriction=setting["friction"], physicsClientId=cid,
+                     **({"restitution": setting["restitution"]} if "restitution" in setting else {}))
+    p.resetBaseVelocity(body, (b0["vx"], b0["vy"], b0["vz"]), (b0["wx"], b0["wy"], b0["wz"]), physicsClientId=cid)
+    return p, cid, body, geo, b0
+
+
+def check_start(p, cid, body, b0: dict, tol: float = 1e-12) -> dict:
+    """The state read back at t = 0 against the case's (fail loudly beyond rounding)."""
+    got = _read_c(p, cid, body)
+    sign = 1.0 if sum(got[c] * b0[c] for c in QUATERNION) >= 0 else -1.0
+    bad = {}
+    for c in QUATERNION + MOTION:
+        ref = b0[c]
+        val = sign * got[c] if c in QUATERNION else got[c]
+        scale = 1.0 if c in QUATERNION + ("x", "y", "z") else max(1.0, max(abs(b0[k]) for k in ("wx", "wy", "wz")))
+        if not abs(val - ref) <= tol * scale:
+            bad[c] = (val, ref)
+    if bad:
+        raise RuntimeError("PyBullet's state at t = 0 is not the case's start: "
+                           + ", ".join(f"{c} = {a!r} (case {b!r})" for c, b in ((c, v[1]) for c, v in bad.items())
+                                       for a in [bad[c][0]]))
+    return got
+
+
+def simulate(record: dict, setting: dict, t_end: float):
+    p, cid, body, geo, b0 = setup(record, setting)
+    try:
+        got0 = check_start(p, cid, body, b0)
+        steps = output_steps(record, setting["dt"], t_end)
+        rows, n_done, outcome = [], 0, "ok"
+        t0 = time.perf_counter()
+        for t, n in steps:
+            while n_done < n:
+                p.stepSimulation(physicsClientId=cid)
+                n_done += 1
+            s = got0 if n == 0 else _read_c(p, cid, body)
+            rows.append([t] + [s[c] for c in QUATERNION + MOTION])
+            if not np.all(np.isfinite(rows[-1])):
+                outcome = "error: non-finite state"
+                break
+        wall = time.perf_counter() - t0
+    finally:
+        p.disconnect(physicsClientId=cid)
+    cols = {c: np.array([r[i] for r in rows]) for i, c in enumerate(COLUMNS)}
+    return cols, wall, outcome, geo
+
+
+def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
+    import pybullet
+
+    name, cfg = (setting, SETTINGS[setting]) if isinstance(setting, str) else ("custom", dict(setting))
+    record = load_case(case)
+    t_end = float(record["t_end"]) if t_end is None else float(t_end)
+    cols, wall, outcome, geo = simulate(record, cfg, t_end)
+    sc = None
+    try:
+        sc = score(cols, case)
+        rec_score = sc.to_record()
+    except Exception as exc:  # noqa: BLE001 - reported, not hidden
+        rec_score, outcome = None, f"error: {type(exc).__name__}: {exc}"
+    if outcome == "ok" and sc is not None:
+        theta = np.arctan2(np.hypot(*_e3xy(cols)), _e3z(cols))
+        # theta is the tilt of e3 from the vertical: pi/2 upright, 0 lying flat; C below the plane: sunk
+        if np.any(theta < FLAT) or np.any(cols["z"] < -1e-3):
+            outcome = "fell"
+    if out:
+        write_csv(cols, out)
+    return {"engine": "PyBullet", "version": _version(pybullet), "case": case, "setting": name,
+            "parameters": {**cfg, "cylinder_half_height": geo["h"], "inertia": [geo["I1"], geo["I1"], geo["I3"]]},
+            "t_end": t_end, "wall_s": round(wall, 3), "score": rec_score, "outcome": outcome,
+            "_score": sc, "_columns": cols}
+
+
+def _e3xy(c):
+    qw, qx, qy, qz = (c[k] for k in QUATERNION)
+    return 2 * (qx * qz + qw * qy), 2 * (qy * qz - qw * qx)
+
+
+def _e3z(c):
+    qw, qx, qy, qz = (c[k] for k in QUATERNION)
+    return 1 - 2 * (qx * qx + qy * qy)
+
+
+def _version(pybullet) -> str:
+    try:
+        from importlib.metadata import version
+        return version("pybullet")
+    except Exception:  # noqa: BLE001
+        return "unknown"
+
+
+def write_csv(cols: dict, path) -> None:
+    data = np.column_stack([cols[c] for c in COLUMNS])
+    np.savetxt(path, data, delimiter=",", header=",".join(COLUMNS), comments="", fmt="%.17g")
+
+
+def _row(r: dict) -> str:
+    s = r["score"]
+    if s is None:
+        return f"{r['case']:<17} {r['setting']:<8} {r['outcome']}"
+    fin = min(c["final_digits"] for c in s["components"].values())
+    return (f"{r['case']:<17} {str(r['setting']):<8} {r['outcome']:<7} {s['min_digits']:6.2f} {fin:6.2f}  "
+            f"{s['energy_rel_drift']:.1e}  {s['contact_height']:.1e}  {s['contact_velocity']:.1e}  {r['wall_s']:.2f} s")
+
+
+def table(t_end: float = 1.0) -> list:
+    """The measured table of the docstring: every case at "default" and "best" to t_end."""
+    rows = []
+    for case in ("disk-standard-1", "hoop-general-10", "ring-standard-10"):
+        for name in ("default", "best"):
+            r = run_case(case, name, t_end)
+            print(_row(r), flush=True)
+            rows.append({k: v for k, v in r.items() if not k.startswith("_")})
+    return rows
+
+
+def sweep(case: str = "disk-standard-1", exponents=(10, 12, 14, 16, 18, 20), t_end: float = 1.0) -> list:
+    """The step sweep of the docstring: the best setting with dt = 2^-n."""
+    rows = []
+    for n in exponents:
+        r = run_case(case, {**BEST, "dt": 2.0 ** -n}, t_end)
+        r["setting"] = f"2^-{n}"
+        print(_row(r), flush=True)
+        rows.append({k: v for k, v in r.items() if not k.startswith("_")})
+    return rows
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--case", default="disk-standard-1")
+    ap.add_argument("--setting", default="best", choices=sorted(SETTINGS))
+    ap.add_argument("--t-end", type=float, default=None)
+    ap.add_argument("--out", default=None)
+    ap.add_argument("--table", action="store_true", help="the docstring's table (all cases, both settings, 1 s)")
+    ap.add_argument("--sweep", action="store_true", help="the docstring's step sweep on --case")
+    args = ap.parse_args()
+    if args.table or args.sweep:
+        table() if args.table else sweep(args.case)
+        return
+    r = run_case(args.case, args.setting, args.t_end, args.out)
+    sc = r.pop("_score")
+    r.pop("_columns")
+    if sc is not None:
+        print(sc.table())
+    print(json.dumps({k: v for k, v in r.items() if k != "score"}, indent=1, default=str))
+
+
+if __name__ == "__main__":
+    main()
