@@ -112,7 +112,7 @@ def words(record: dict) -> str:
     if outcome == "fell":
         return "falls over (wrong)"
     digits = s["min_digits"]
-    said = next((text for bound, text in WORDS if digits >= bound), "wrong from the start")
+    said = next((text for bound, text in WORDS if digits >= bound), "no digit right")
     if s.get("energy_rel_drift") is not None and s["energy_rel_drift"] > 1e-2:
         said += f"; energy drifts {100 * s['energy_rel_drift']:.0f} %"
     return said + (" (partial)" if s.get("partial") else "")
