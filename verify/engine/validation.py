@@ -52,6 +52,9 @@ class InvalidStart(ValueError):
         super().__init__(message)
         self.reason = reason
 
+    def __reduce__(self):  # picklable with its reason: a worker process's refusal reaches the caller as itself
+        return type(self), (str(self), self.reason)
+
 
 # --- parameters ------------------------------------------------------------------------------------
 

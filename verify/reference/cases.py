@@ -41,7 +41,7 @@ class ReferenceCase:
     model : str
         Model name (``python -m verify models``); the derived equations are integrated.
     state, params : dict of str
-        Exact decimal strings; unset state components are 0, unset parameters take the
+        Exact decimal strings (parameters may be exact fractions, 301/1200); unset state components are 0, unset parameters take the
         model's exact defaults.
     t_end : str
         Duration in seconds (decimal string).
@@ -63,6 +63,11 @@ class ReferenceCase:
     source: str
     description: str
     params: dict = field(default_factory=dict)
+
+    @property
+    def exact_params(self) -> dict:
+        """The parameters as exact sympy numbers (a fraction such as 301/1200 is not a decimal string)."""
+        return {k: sp.Rational(v) for k, v in self.params.items()}
 
     def grid(self) -> list:
         """The output times as exact decimal strings."""
@@ -184,6 +189,11 @@ def _cases() -> tuple:
                       "ring rolling with nutation"),
         ReferenceCase("ring-standard-100", "ring", _standard("ring"), "100", 100, "wild", "suite's standard state",
                       "ring rolling with nutation over 100 s"),
+        ReferenceCase("coin-standard-1", "ring", _standard("disk"), "1", 32, "wild",
+                      "a coin: the ring model as a uniform solid cylinder of thickness 2h = R/10",
+                      "a coin as engines draw one (a cylinder touching on its rim edge, half a thickness off the "
+                      "mid-plane): I1 = 1/4 + h^2/3, I3 = 1/2, h = 1/20; the disk's standard start",
+                      {"I1": "301/1200", "I3": "1/2", "h": "1/20"}),
         ReferenceCase("hurricane-fig16", "hurricane", {"theta": fig16_theta, "phidot": fig16_rate, "psidot": fig16_rate},
                       "10", 40, "quiet", "paper Fig. 16 (Eq. 72 precession)",
                       "steady precession at phidot = psidot = sqrt(25 g), theta the root of the derived row 1"),

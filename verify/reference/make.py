@@ -50,7 +50,7 @@ def run_case(name: str, precision: str) -> Run:
     """Integrate case ``name`` at ``precision`` on its grid (derived equations); raise unless it reaches t_end."""
     c = case(name)
     p = parse_precision(precision)
-    sol = solve(c.model, c.t_end, c.state, c.params, precision=p, t_eval=c.grid())
+    sol = solve(c.model, c.t_end, c.state, c.exact_params, precision=p, t_eval=c.grid())
     if sol.outcome != "ok" or len(sol.t) != c.intervals + 1:
         raise RuntimeError(f"reference case {name} at {precision}: {sol.outcome} at t = {sol.t[-1]} "
                            f"({len(sol.t)} of {c.intervals + 1} grid points); a reference run must reach t_end")
@@ -107,7 +107,7 @@ def _fingerprint(model_name: str) -> str:
 def conditioning(c: ReferenceCase) -> dict:
     """Row sums of |Phi(t, 0)| and the parameter terms on the grid (t > 0), per component."""
     times = [float(t) for t in c.grid()[1:]]
-    R, P = sensitivities(c.model, times, c.state, c.params)
+    R, P = sensitivities(c.model, times, c.state, c.exact_params)
     fmt = lambda x: float(f"{x:.3e}")  # noqa: E731 -- magnitudes: 4 digits are plenty, and stable
     return {
         "method": "heyoka variational equations of order 1 in the state and the runtime parameters, double "
