@@ -47,6 +47,23 @@ the default dissipation: lagged 0.68, sap 0.98, similar 1.10; the same with diss
 1e-3: 3.46 digits in 87 s.  The digits follow the stiction tolerance (1e-2, 3e-3, 1e-3 ->
 1.2, 1.7, 2.1) and the time step of the discrete plant (first order), not the stiffness.
 
+The other cases, first 2 s (``--t-end 2``; the scorer accepts a run that stops before t_end
+and scores [0, t_last] against the quad re-integration at the run's times):
+
+=====================================  =====  =====  =======  ========  ========  ======
+case, setting                          min    final  E drift  max |zP|  max |vP|  wall s
+=====================================  =====  =====  =======  ========  ========  ======
+hoop-general-10 default ('fell')        0.00   0.27  4.9e-1   1.2       13          0.7
+hoop-general-10 best                    1.96   1.96  4.7e-4   1.7e-6    7.7e-3     55.7
+ring-standard-10 default (a coin)       0.00   0.00  6.0e-3   3.1e-2    3.3e-1      1.3
+ring-standard-10 best (a coin)          2.67   2.67  6.8e-5   1.7e-6    2.6e-2     75.4
+disk-standard-1 default ('fell', 1 s)  -0.19   0.00  5.2e-1   1.3       18          0.5
+disk-standard-1 best (1 s)              2.20   2.27  3.8e-4   3.6e-6    1.7e-2     48.5
+=====================================  =====  =====  =======  ========  ========  ======
+
+The ring at defaults stays up but sinks 0.03 R into the plane and its precession phase
+(phi) is wrong by ~pi at t = 2 s.
+
 Pitfalls (each one silently wrong, not an error)
 ------------------------------------------------
 * Units: Drake is nominally SI, but nothing in it is unit-aware; here lengths are R (= 1 cm),
