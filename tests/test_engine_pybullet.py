@@ -18,7 +18,7 @@ T_END = 0.1  # 104858 steps of 2^-20 s: about 1 s of wall time, and 1 s to re-in
 #: (an error 3x larger) covers another build's rounding and solver order and is still above the same
 #: run with a step 4x coarser (3.88 digits, the first-order error): the test fails if the best
 #: setting loses the step it was chosen for, and the controls below score 0.2 digits or less.
-MEASURED_DIGITS = 4.49
+MEASURED_DIGITS = 4.50  # on the scorer's whole-case scales
 MARGIN = 0.5
 
 
