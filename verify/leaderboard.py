@@ -22,9 +22,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 ADAPTERS = ROOT / "examples" / "engines"
-#: (case, end time run): the disk over its whole case; the hoop and the coin-like ring over their first
-#: second (an engine at its best settings takes minutes for 10 s; the score then says "partial")
-CASES = (("disk-standard-1", None), ("hoop-general-10", 1.0), ("ring-standard-10", 1.0))
+#: (case, end time run): the disk and the coin (the ring model as the cylinder engines simulate) over their
+#: whole case; the hoop and the paper's ring over their first second (an engine at its best settings takes
+#: minutes for 10 s; the score then says "partial")
+CASES = (("disk-standard-1", None), ("coin-standard-1", None), ("hoop-general-10", 1.0), ("ring-standard-10", 1.0))
 SETTINGS = ("default", "best")
 TIMEOUT = 900  # s per engine run: a hung engine is stopped and named
 #: digits at which a run is said to agree "to the eye" (a plot), "for engineering" (3) and "as a reference" (10)
