@@ -110,7 +110,7 @@ def words(record: dict) -> str:
         return "not installed here"
     if outcome.startswith("error") or s is None:
         return "no score: " + outcome
-    if outcome == "fell":
+    if outcome.startswith("fell"):
         return "falls over (wrong)"
     digits = s["min_digits"]
     said = next((text for bound, text in WORDS if digits >= bound), "no digit right")

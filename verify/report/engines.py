@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from typing import Optional
 
+from ..leaderboard import words
+
 
 def _num(value, fmt: str) -> str:
     return "-" if value is None else format(value, fmt)
@@ -43,6 +45,6 @@ def render_markdown(board: Optional[dict]) -> list:
             lines.append(f"| {r.get('engine', r['adapter'])} {r.get('version', '')} | {r['setting']} | "
                          f"{_num(s.get('min_digits'), '.2f')}{where} | {_num(final, '.2f')} | "
                          f"{_num(s.get('energy_rel_drift'), '.1e')} | {_num(s.get('contact_height'), '.1e')} | "
-                         f"{_num(s.get('contact_velocity'), '.1e')} | {_num(r.get('wall_s'), '.3g')} | {r['words']} |")
+                         f"{_num(s.get('contact_velocity'), '.1e')} | {_num(r.get('wall_s'), '.3g')} | {words(r)} |")
         lines.append("")
     return lines

@@ -364,7 +364,7 @@ def reference_rows(names=None) -> list:
     for c in cases():
         if names is not None and c.name not in names:
             continue
-        sol = solve(c.model, c.t_end, dict(c.state), dict(c.params), n_eval=REFERENCE_POINTS)
+        sol = solve(c.model, c.t_end, dict(c.state), c.exact_params, n_eval=REFERENCE_POINTS)
         rows.append({"case": c.name, "source": c.source, "kind": c.kind, **run_friction(sol)})
     return rows
 
