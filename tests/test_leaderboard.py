@@ -46,7 +46,7 @@ def test_the_section_renders_a_board_and_says_how_to_make_one():
                                  "contact_height": 1e-6, "contact_velocity": 1e-5,
                                  "components": {"theta": {"final_digits": 5.0}}}}]}
     text = "\n".join(render_markdown(board))
-    assert "| Fake 0.1 | best | 4.20 (psi at t = 1) | 5.00 | 1.0e-05 | 1.0e-06 | 1.0e-05 | 0.5 | good to 3 digits |" in text
+    assert "| Fake 0.1 | best | 4.20 (psi at t = 1) | 5.00 | 1.0e-05 | 1.0e-06 / 1.0e-05 | 0.5 | good to 3 digits |" in text
     assert "make engines" in "\n".join(render_markdown(None))
     assert figure_png(board)[:8] == b"\x89PNG\r\n\x1a\n"
     json.dumps(board)

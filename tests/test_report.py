@@ -52,7 +52,7 @@ def test_rendering_is_deterministic_and_anchors_every_claim(tmp_path, monkeypatc
     assert (tmp_path / "REPORT.md").read_text() == a
 
 
-def _claims_sections(results, benchmarks):
+def _claims_sections(results, benchmarks, engines=None):
     by = {}
     for rec in results["claims"]:
         by.setdefault(rec["section"], []).append(rec)

@@ -299,7 +299,7 @@ def test_text_is_shown_literally_and_math_is_typeset(monkeypatch):
     assert leftovers(Page("<p>an untypeset $x_1$</p>"), MARKDOWN_LEFTOVERS)
 
 
-def _sections_without_studies(results, benchmarks):
+def _sections_without_studies(results, benchmarks, engines=None):
     from verify.report.markdown import claim_markdown  # noqa: F401 -- same module the real one uses
 
     recs = results["claims"]

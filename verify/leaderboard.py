@@ -142,30 +142,48 @@ def run_board(engines=None, cases=CASES, settings=SETTINGS, progress=print) -> d
 
 
 def figure_png(board: dict) -> bytes:
-    """Digits (fewest over the run) against wall time, one marker per engine and setting, log time."""
+    """Digits (fewest over the run) against wall time (log), one panel a case, one marker an engine
+    (filled: its best settings; open: its defaults, or the suite in double)."""
+    import math
+
     import matplotlib
 
     from . import style
 
+    n = len(board["cases"])
+    cols = 2 if n > 1 else 1
+    rows = math.ceil(n / cols)
     with matplotlib.rc_context(style.RC):
-        fig, axes = style.plt.subplots(1, len(board["cases"]), figsize=(style.COLUMN_WIDTH, 3.6), sharey=True)
-        axes = list(getattr(axes, "flat", [axes]))
+        fig, axes = style.plt.subplots(rows, cols, figsize=(style.COLUMN_WIDTH, 2.9 * rows + 0.9), sharey=True,
+                                       squeeze=False)
         engines = sorted({r["engine"] for r in board["rows"]})
         markers = dict(zip(engines, "osD^vP*X"))
-        for ax, c in zip(axes, board["cases"]):
+        for ax, c in zip(axes.flat, board["cases"]):
             for r in board["rows"]:
                 if r["case"] != c["case"] or not r.get("score") or not r.get("wall_s"):
                     continue
                 ax.plot(r["wall_s"], max(r["score"]["min_digits"], 0.0), markers[r["engine"]],
                         mfc="none" if r["setting"] in ("default", "double") else None,
-                        label=f"{r['engine']} {r['setting']}")
+                        label=f"{r['engine'].split(' (')[0]} {r['setting']}")
             ax.set_xscale("log")
             ax.set_xlabel("wall time / s")
-            ax.set_title(c["case"] + ("" if c["t_end_run"] is None else f", first {c['t_end_run']:g} s"))
-        axes[0].set_ylabel("fewest digits of agreement")
-        handles, labels = axes[0].get_legend_handles_labels()
-        fig.legend(handles, labels, loc="outside right upper", fontsize=style.MIN_FONT_PT)
+            ax.set_ylabel("fewest digits")
+            ax.set_title(c["case"] + ("" if c["t_end_run"] is None else f" (first {c['t_end_run']:g} s)"))
+        for ax in list(axes.flat)[n:]:
+            ax.set_visible(False)
+        handles, labels = axes.flat[0].get_legend_handles_labels()
+        fig.legend(handles, labels, loc="outside lower center", ncol=5, fontsize=style.MIN_FONT_PT)
         return style.png_bytes(fig)
+
+
+def rewrite_figure(out="reports") -> Path:
+    """``out/figures/engines.png`` again from ``out/engines.json`` (no engine is run)."""
+    from .provenance import write_atomic
+
+    out = Path(out)
+    board = json.loads((out / "engines.json").read_text())
+    write_atomic(out / "figures" / "engines.png", figure_png(board))
+    return out / "figures" / "engines.png"
 
 
 def write_board(board: dict, out="reports") -> list:

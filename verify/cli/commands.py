@@ -347,8 +347,15 @@ def cmd_report(args, session: Session) -> int:
 
 def cmd_engines(args, session: Session) -> int:
     """``engines``: the leaderboard (verify.leaderboard): every engine adapter on the reference cases."""
-    from ..leaderboard import CASES, adapters, run_board, write_board
+    from pathlib import Path
 
+    from ..leaderboard import CASES, adapters, rewrite_figure, run_board, write_board
+
+    if args.render_only:
+        if not (Path(args.out) / "engines.json").exists():
+            raise UsageError(f"--render-only: no {Path(args.out) / 'engines.json'} yet; run 'make engines' first")
+        session.emit(f"wrote {rewrite_figure(args.out)} from {Path(args.out) / 'engines.json'}")
+        return 0
     found = adapters()
     for name in args.engine or ():
         if name not in found:

@@ -36,15 +36,15 @@ def render_markdown(board: Optional[dict]) -> list:
         rows = [r for r in board["rows"] if r["case"] == case["case"]]
         span = "" if case["t_end_run"] is None else f" (first {case['t_end_run']:g} s)"
         lines += [f"**{case['case']}**{span}", "",
-                  "| engine | setting | fewest digits (where) | final digits | energy drift | contact height "
-                  "| contact slip | wall s | verdict |", "|---|---|---|---:|---:|---:|---:|---:|---|"]
+                  "| engine | setting | fewest digits (where) | final digits | energy drift | contact height / slip "
+                  "| wall s | verdict |", "|---|---|---|---:|---:|---:|---:|---|"]
         for r in rows:
             s = r.get("score") or {}
             final = min((c["final_digits"] for c in s.get("components", {}).values()), default=None)
             where = f" ({s['worst']})" if s.get("worst") else ""
             lines.append(f"| {r.get('engine', r['adapter'])} {r.get('version', '')} | {r['setting']} | "
                          f"{_num(s.get('min_digits'), '.2f')}{where} | {_num(final, '.2f')} | "
-                         f"{_num(s.get('energy_rel_drift'), '.1e')} | {_num(s.get('contact_height'), '.1e')} | "
+                         f"{_num(s.get('energy_rel_drift'), '.1e')} | {_num(s.get('contact_height'), '.1e')} / "
                          f"{_num(s.get('contact_velocity'), '.1e')} | {_num(r.get('wall_s'), '.3g')} | {words(r)} |")
         lines.append("")
     return lines
