@@ -6,16 +6,15 @@ of the suite.
 from __future__ import annotations
 
 import copy
-import importlib.util
-from pathlib import Path
 
 import pytest
+
+from verify.leaderboard import load_adapter
 
 pytest.importorskip("pydrake", reason="Drake (pip install drake) is not installed: the adapter cannot run")
 
 from verify import score  # noqa: E402
 
-PATH = Path(__file__).resolve().parent.parent / "examples" / "engines" / "drake_adapter.py"
 CASE = "disk-standard-1"
 T_SHORT = 0.05  # s: 7 output times (1/128 s apart), about 3 s of wall time at the best setting
 #: min_digits of the best setting to T_SHORT, measured with Drake 1.51.1 (x86_64 Linux):
@@ -31,10 +30,7 @@ MARGIN = 0.3
 
 @pytest.fixture(scope="module")
 def adapter():
-    spec = importlib.util.spec_from_file_location("drake_adapter", PATH)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_adapter("drake")
 
 
 def test_start_is_read_back_and_a_wrong_one_is_refused(adapter):

@@ -4,24 +4,20 @@ Skipped where Exudyn is not installed (``pip install exudyn``; measured with 1.1
 """
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
 
 import pytest
 
+from verify.leaderboard import load_adapter
+
 pytest.importorskip("exudyn", reason="Exudyn is not installed (pip install exudyn): the adapter cannot run")
 
-ROOT = Path(__file__).resolve().parents[1]
 CASE = "disk-standard-1"
 T_END = 0.125  # 4 grid steps of the case (1/32 s), 32768 steps of 2^-18 s: about 1 s of wall time
 
 
 @pytest.fixture(scope="module")
 def adapter():
-    spec = importlib.util.spec_from_file_location("exudyn_adapter", ROOT / "examples" / "engines" / "exudyn_adapter.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_adapter("exudyn")
 
 
 @pytest.fixture(scope="module")

@@ -13,14 +13,13 @@ contact scores below 0 and a stiffness 10 times lower 3.6 -- without depending o
 """
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
 
 import pytest
 
+from verify.leaderboard import load_adapter
+
 mujoco = pytest.importorskip("mujoco", reason="MuJoCo is not installed (pip install mujoco)")
 
-PATH = Path(__file__).resolve().parents[1] / "examples" / "engines" / "mujoco_adapter.py"
 CASE = "disk-standard-1"
 T_END = 0.1
 MEASURED = 4.17  # min digits to t = 0.1 s, best setting, MuJoCo 4.0.0, on the scorer's whole-case scales
@@ -29,10 +28,7 @@ FLOOR = MEASURED - 0.33
 
 @pytest.fixture(scope="module")
 def adapter():
-    spec = importlib.util.spec_from_file_location("mujoco_adapter", PATH)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_adapter("mujoco")
 
 
 @pytest.fixture(scope="module")

@@ -2,14 +2,13 @@
 
 Skipped where PyBullet is not installed (``pip install pybullet``; measured with 3.2.7).
 """
-import importlib.util
-from pathlib import Path
 
 import pytest
 
+from verify.leaderboard import load_adapter
+
 pytest.importorskip("pybullet", reason="PyBullet is not installed (pip install pybullet): the adapter cannot run")
 
-ROOT = Path(__file__).resolve().parent.parent
 CASE = "disk-standard-1"
 T_END = 0.1  # 104858 steps of 2^-20 s: about 1 s of wall time, and 1 s to re-integrate the reference in quad
 
@@ -23,10 +22,7 @@ MARGIN = 0.5
 
 
 def _adapter():
-    spec = importlib.util.spec_from_file_location("pybullet_adapter", ROOT / "examples" / "engines" / "pybullet_adapter.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_adapter("pybullet")
 
 
 @pytest.fixture(scope="module")

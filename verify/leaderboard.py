@@ -33,6 +33,16 @@ WORDS = ((10, "reference quality"), (6, "accurate"), (3, "good to 3 digits"), (1
          (0.3, "qualitatively right"))
 
 
+def load_adapter(name: str):
+    """The adapter module ``examples/engines/<name>_adapter.py`` (examples/engines is not a package)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(f"{name}_adapter", ADAPTERS / f"{name}_adapter.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def adapters() -> dict:
     """Engine module name -> path of every adapter present."""
     return {p.stem.removesuffix("_adapter"): p for p in sorted(ADAPTERS.glob("*_adapter.py"))}
