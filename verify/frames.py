@@ -32,6 +32,10 @@ those too.
 Form (b) is defined for the bodies on the plane: ``disk``, ``ring``, ``hurricane``,
 ``sliding-disk``.  (The gyroscope turns about a fixed pivot and the effective model imposes
 psi = phi; neither has a contact on the plane, and their runs are read in form (a) only.)
+
+The numeric parts (the columns, :func:`detect`, (b) -> (a), the contact point, the rotation's
+defect) live in :mod:`verify.scoring.geometry`, numpy only, so that scoring needs no sympy; they
+are re-exported here and tested against the expressions of this module.
 """
 from __future__ import annotations
 
@@ -43,15 +47,9 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE, STATE_NAMES, omega_body, phi, psi, theta, thetadot, to_inertial
 
-EULER = ("t",) + STATE_NAMES
-MATRIX_ENTRIES = tuple(f"R{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3))
-QUATERNION = ("qw", "qx", "qy", "qz")
-MOTION = ("x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz")
-MATRIX = ("t",) + MATRIX_ENTRIES + MOTION
-QUATERNION_FORM = ("t",) + QUATERNION + MOTION
-BOTH = ("t",) + MATRIX_ENTRIES + QUATERNION + MOTION
-#: the rotation given both ways (as ``reference --export`` writes it): R is read, q must agree at t = 0
-FORMS = {"euler": EULER, "matrix": MATRIX, "quaternion": QUATERNION_FORM, "matrix+quaternion": BOTH}
+from .scoring.geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTION, QUATERNION,  # noqa: F401
+                               QUATERNION_FORM, b_to_euler, contact_point, detect, frame, matrix_from_quaternion,
+                               rotation_defect)
 
 
 def _contact_geometry():
@@ -65,20 +63,6 @@ def _contact_geometry():
 #: model -> (r2, r3, contact): r_P = r2 e2 + r3 e3 from C to the contact point.
 CONTACT = _contact_geometry()
 BODIES_ON_PLANE = tuple(CONTACT)
-
-
-def detect(columns) -> str:
-    """The form whose columns are exactly ``columns`` (any order); ``ValueError`` naming the difference."""
-    have = set(columns)
-    for name, cols in FORMS.items():
-        if have == set(cols):
-            return name
-    best = min(FORMS, key=lambda n: len(have ^ set(FORMS[n])))
-    missing = [c for c in FORMS[best] if c not in have]
-    extra = sorted(have - set(FORMS[best]))
-    raise ValueError(f"columns {sorted(have)} are none of the documented forms (nearest: {best}; missing "
-                     f"{missing or '-'}, unknown {extra or '-'}); allowed: "
-                     + "; ".join(f"{n}: {', '.join(c)}" for n, c in FORMS.items()))
 
 
 def rotation_matrix() -> sp.Matrix:
@@ -144,84 +128,3 @@ def euler_to_b(model: str, state: dict, params: dict, module: str = "numpy") -> 
         v = f(*args)
         out[k] = np.broadcast_to(v, np.shape(state["theta"])).astype(float) if module == "numpy" else v
     return out
-
-
-def matrix_from_quaternion(qw, qx, qy, qz) -> np.ndarray:
-    """R (shape (3, 3, n)) of the quaternion, normalised: its norm's defect is reported apart."""
-    n = np.sqrt(qw ** 2 + qx ** 2 + qy ** 2 + qz ** 2)
-    w, x, y, z = qw / n, qx / n, qy / n, qz / n
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-
-
-def b_to_euler(columns: dict) -> tuple:
-    """(form (a) as a dict of arrays, R of shape (3, 3, n), omega of shape (3, n)) from form (b)'s columns."""
-    if "R11" not in columns:
-        R = matrix_from_quaternion(*(columns[c] for c in QUATERNION))
-    else:
-        R = np.array([[columns[f"R{i}{j}"] for j in (1, 2, 3)] for i in (1, 2, 3)])
-    th = np.arctan2(np.hypot(R[0, 2], R[1, 2]), R[2, 2])
-    ph = np.arctan2(R[0, 2], -R[1, 2])
-    ps = np.arctan2(R[2, 0], R[2, 1])
-    w = np.array([columns["wx"], columns["wy"], columns["wz"]])
-    e1, e2, e3 = frame(th, ph)
-    thd = np.einsum("in,in->n", w, e1)
-    phd = np.einsum("in,in->n", w, e2) / np.sin(th)
-    psd = np.einsum("in,in->n", w, e3) - phd * np.cos(th)
-    state = {"theta": th, "phi": ph, "psi": ps, "thetadot": thd, "phidot": phd, "psidot": psd,
-             "x": np.asarray(columns["x"], float), "y": np.asarray(columns["y"], float)}
-    return state, R, w
-
-
-def frame(th, ph) -> tuple:
-    """(e1, e2, e3), each of shape (3, n) (paper Fig. 1)."""
-    s, c, sp_, cp = np.sin(th), np.cos(th), np.sin(ph), np.cos(ph)
-    z = np.zeros_like(th)
-    return (np.array([cp, sp_, z]), np.array([-sp_ * c, cp * c, s]), np.array([sp_ * s, -cp * s, c]))
-
-
-@lru_cache(maxsize=None)
-def _radii(model: str):
-    m = get_model(model)
-    r2, r3, _ = CONTACT[model]
-    args = [theta] + [p.symbol for p in m.parameters]
-    return sp.lambdify(args, r2, "numpy"), sp.lambdify(args, r3, "numpy")
-
-
-def contact_point(model: str, columns: dict, state: dict, w: np.ndarray, params: dict) -> tuple:
-    """(height of P, velocity of P that the constraints require to vanish) along a form (b) run.
-
-    The height is P's z (lengths in the model's unit); the velocity is v_C + omega x r_P,
-    all three components rolling, its vertical component on the smooth plane (the body may
-    slide there).  Returned as arrays: height (n,), |velocity| (n,).
-    """
-    m = get_model(model)
-    values = [params[p.name] for p in m.parameters]
-    f2, f3 = _radii(model)
-    th = state["theta"]
-    r2 = np.broadcast_to(f2(th, *values), th.shape)
-    r3 = np.broadcast_to(f3(th, *values), th.shape)
-    _, e2, e3 = frame(th, state["phi"])
-    r_p = r2 * e2 + r3 * e3
-    height = np.asarray(columns["z"], float) + r_p[2]
-    v = np.array([columns["vx"], columns["vy"], columns["vz"]], float) + np.cross(w, r_p, axis=0)
-    speed = np.abs(v[2]) if CONTACT[model][2] == "smooth" else np.sqrt((v * v).sum(axis=0))
-    return height, speed
-
-
-def rotation_defect(R: np.ndarray, columns: dict) -> np.ndarray:
-    """How far the run's orientation is from a rotation: max |R^T R - I| entry and |det R - 1|, or
-    | |q| - 1 |; with both given, also the largest entry of R(q) - R."""
-    norm = None
-    if "qw" in columns:
-        norm = np.abs(np.sqrt(sum(np.asarray(columns[c], float) ** 2 for c in QUATERNION)) - 1)
-        if "R11" not in columns:
-            return norm
-    gram = np.einsum("kin,kjn->ijn", R, R) - np.eye(3)[:, :, None]
-    det = np.linalg.det(np.moveaxis(R, 2, 0))
-    defect = np.maximum(np.abs(gram).max(axis=(0, 1)), np.abs(det - 1))
-    if norm is not None:  # both given: they must be the same rotation
-        other = matrix_from_quaternion(*(columns[c] for c in QUATERNION))
-        defect = np.maximum(defect, np.maximum(norm, np.abs(other - R).max(axis=(0, 1))))
-    return defect

@@ -255,8 +255,8 @@ def cmd_score(args, session: Session) -> int:
     """``score RUN --case NAME [--min-digits D]``: the table; exit 1 below D or for a partial run."""
     from pathlib import Path
 
-    from ..reference import DIRECTORY
     from ..scoring import START_TOLERANCE, score
+    from ..scoring.casefiles import DIRECTORY
 
     tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-9"))
     if not tol < 1:  # a tolerance of a whole scale or more (or one that overflows to inf) checks no start at all

@@ -33,9 +33,9 @@ from ..provenance import source_commit, versions, write_atomic
 from .cases import ReferenceCase
 from .make import HIGH, LOW, Run, agreed_columns, conditioning, equations_fingerprint, predicted_digits
 
-FORMAT = "rolling-verify reference trajectory, format 1"
-INDEX_FORMAT = "rolling-verify reference set, format 1"
-DIRECTORY = Path(__file__).resolve().parent.parent.parent / "reports" / "reference"
+# the readers (and the set's place and formats) are json only, shared with the scorer (verify.scoring.casefiles)
+from ..scoring.casefiles import (DIRECTORY, FORMAT, INDEX_FORMAT, file_sha256, load_set, read_case,  # noqa: F401
+                                 read_index, read_json)
 
 CONVENTIONS = {
     "angles": "3-1-3 Euler angles (phi, theta, psi), paper Fig. 1: e1 = (cos phi, sin phi, 0) the line of nodes, "
@@ -128,10 +128,6 @@ def _zeros(entry: dict) -> str:
     return ", ".join(f"{n} ({e})" for n, e in zeros.items()) or "-"
 
 
-def file_sha256(path: Path) -> str:
-    return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-
-
 def dumps(record: dict) -> str:
     return json.dumps(record, indent=1) + "\n"
 
@@ -183,56 +179,6 @@ def refresh_index(directory: Path = DIRECTORY, names=None) -> None:
     index = index_record([read_case(directory / f"{n}.json") for n in names])
     write_atomic(directory / "index.json", json.dumps(index, indent=1) + "\n")
     write_atomic(directory / "README.md", readme(index))
-
-
-def read_case(path: Path) -> dict:
-    """A case file, checked for its format; ``ValueError`` naming the file otherwise."""
-    return read_json(path, FORMAT, "no reference case file {path}; run 'python -m verify reference --make'")
-
-
-def read_json(path: Path, format_: str, missing: str) -> dict:
-    """A JSON record of the reference set, checked for its ``format``; ``ValueError`` naming the file
-    otherwise (``missing``, with ``{path}`` filled in, when there is none)."""
-    path = Path(path)
-    try:
-        record = json.loads(path.read_text())
-    except FileNotFoundError:
-        raise ValueError(missing.format(path=path)) from None
-    except json.JSONDecodeError as err:
-        raise ValueError(f"{path} is not valid JSON ({err})") from None
-    if record.get("format") != format_:
-        raise ValueError(f"{path} has format {record.get('format')!r}; this reader understands {format_!r}")
-    return record
-
-
-def read_index(directory: Path = DIRECTORY) -> dict:
-    path = Path(directory) / "index.json"
-    try:
-        index = json.loads(path.read_text())
-    except FileNotFoundError:
-        raise ValueError(f"no reference set in {directory} (index.json missing); run 'python -m verify reference --make'") \
-            from None
-    if index.get("format") != INDEX_FORMAT:
-        raise ValueError(f"{path} has format {index.get('format')!r}; this reader understands {INDEX_FORMAT!r}")
-    return index
-
-
-def load_set(directory: Path = DIRECTORY, names=None) -> list:
-    """The case records of the set (all, or those named), each checked against the index's sha256."""
-    directory = Path(directory)
-    index = read_index(directory)
-    known = {e["name"]: e for e in index["cases"]}
-    wanted = list(known) if not names else list(names)
-    out = []
-    for n in wanted:
-        if n not in known:
-            raise ValueError(f"unknown reference case {n!r}; allowed: {', '.join(known)}")
-        record = read_case(directory / known[n]["file"])
-        if file_sha256(directory / known[n]["file"]) != known[n]["sha256"]:
-            raise ValueError(f"{directory / known[n]['file']} does not match the sha256 in index.json: the file was "
-                             "changed after it was made")
-        out.append(record)
-    return out
 
 
 def readme(index: dict) -> str:

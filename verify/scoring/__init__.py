@@ -1,9 +1,14 @@
 """Scoring another simulator against the reference set (``python -m verify score RUN --case NAME``).
 
-* :mod:`.forms` -- the documented forms of a run (Euler angles; rotation matrix or quaternion
-  with the centre of mass and the angular velocity) and the exact conversion between them;
+* :mod:`.geometry` -- the documented forms of a run (Euler angles; rotation matrix or quaternion
+  with the centre of mass and the angular velocity), the conversion between them, the contact
+  point and the energies, in numpy (the symbolic definitions are :mod:`verify.frames`);
+* :mod:`.casefiles` -- reading the reference set's JSON files;
 * :mod:`.runs` -- reading a run from CSV or JSON;
 * :mod:`.agreement` -- digits of agreement per component, energy drift, constraint drift, a verdict.
+
+Importing this package and scoring a run on the case's grid times needs numpy and mpmath only
+(no sympy, no heyoka: docs/scoring.md, "A light install").
 
 >>> from verify import score
 >>> s = score("my_run.csv", "disk-standard-1")      # doctest: +SKIP
@@ -11,7 +16,7 @@
 >>> from verify.scoring import assert_scores
 >>> assert_scores("my_run.csv", "disk-standard-1", min_digits=6)   # in a pytest test: fails below 6 digits  # doctest: +SKIP
 """
-from ..frames import BODIES_ON_PLANE, FORMS
+from .geometry import BODIES_ON_PLANE, FORMS
 from .runs import InvalidRun, read_run
 from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, assert_scores, score
 

@@ -42,13 +42,9 @@ from pathlib import Path
 from typing import Optional
 
 import numpy as np
-import sympy as sp
 
-from models import get_model
-from models.symbols import STATE, STATE_NAMES
-
-from ..reference.store import DIRECTORY, load_set
-from ..frames import CONTACT, b_to_euler, contact_point, rotation_defect
+from .casefiles import DIRECTORY, load_set
+from .geometry import CONTACT, STATE_NAMES, b_to_euler, contact_point, energy as state_energy, rotation_defect
 from .runs import InvalidRun, exact_decimal, read_run
 
 DIGITS_RESOLVED = -math.log10(2.0 ** -53)
@@ -250,7 +246,7 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
         components[n] = ComponentScore(n, float(d[j]), float(t[j]), float(np.median(d)), float(d[-1]), *scales[n])
     worst = min(components.values(), key=lambda c: c.min_digits)
     if form == "euler":
-        energy = _energy(model)(*[state[n] for n in STATE_NAMES], *[params[p.name] for p in get_model(model).parameters])
+        energy = state_energy(model, state, params)
     else:
         energy = own_energy(model, columns, R, w, params)
     energy = np.broadcast_to(energy, t.shape)
@@ -352,6 +348,14 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
         exact = {n: [record["state"][n]["value"][j] for j in rows] for n in STATE_NAMES}
         source = "stored grid"
     else:
+        try:  # the quad re-integration needs the full suite; a light install (numpy, mpmath) scores grid times only
+            import heyoka  # noqa: F401
+            import sympy as sp
+        except ImportError as err:
+            off = next(float(v) for v in t if float(v) not in index)
+            raise InvalidRun(f"the run's times are not the case's grid times (t = {off!r} is not one); without "
+                             f"{err.name} this install cannot re-integrate the case at other times: give the grid "
+                             f"times (listed in the case file, key 'grid') or install the full suite") from None
         from ..engine.single import solve
         from ..precision import parse_precision
 
@@ -373,10 +377,3 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
             out[n] = np.array([float(v) for v in values])
     return out, source
 
-
-def _energy(model: str):
-    return _ENERGY.setdefault(model, sp.lambdify(list(STATE) + [p.symbol for p in get_model(model).parameters],
-                                                 get_model(model).energy, "numpy"))
-
-
-_ENERGY: dict = {}

@@ -1,4 +1,4 @@
-"""Reading another simulator's run: CSV or JSON, columns named as in :mod:`.forms`.
+"""Reading another simulator's run: CSV or JSON, columns named as in :mod:`.geometry`.
 
 * CSV: one header line naming the columns, then one row per output time; lines starting
   with ``#`` are comments.  Values are numbers (Python's float syntax).
@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..frames import FORMS, detect
+from .geometry import FORMS, detect
 
 
 #: The first line of the suite's own run files (verify.series.columns.FORMAT, written out: scoring stays light).
