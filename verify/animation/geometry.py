@@ -98,16 +98,16 @@ def rotation(theta, phi, psi) -> np.ndarray:
 
 
 def contact_radii(kind: str, theta, params: dict) -> tuple:
-    """(r2, r3) of r_P = r2 e2 + r3 e3 (paper Eqs. 7, 47, 63); arrays of theta's shape."""
+    """(r2, r3) of r_P = r2 e2 + r3 e3 (paper Eqs. 7, 47, 63); arrays of theta's shape.
+
+    The scorer's numbers (:data:`verify.scoring.geometry.CONTACT`): one definition of each body's contact."""
+    from ..scoring.geometry import CONTACT
+
+    if kind not in ("disk", "ring", "hurricane"):
+        raise AnimationError(f"body {kind!r} has no contact on the plane; allowed: disk, ring, hurricane")
     theta = np.asarray(theta, float)
-    one = np.ones_like(theta)
-    if kind == "disk":
-        return -one, 0 * one
-    if kind == "ring":
-        return -one, -params["h"] * one
-    if kind == "hurricane":
-        return -np.sin(theta), -(1 + np.cos(theta))
-    raise AnimationError(f"body {kind!r} has no contact on the plane; allowed: disk, ring, hurricane")
+    r2, r3 = CONTACT[kind][0](theta, params)
+    return np.broadcast_to(r2, theta.shape).astype(float), np.broadcast_to(r3, theta.shape).astype(float)
 
 
 def centre_height(kind: str, theta, params: dict) -> np.ndarray:
