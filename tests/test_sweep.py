@@ -138,6 +138,25 @@ def test_a_store_of_another_spec_is_refused(tmp_path):
         Store(other)
 
 
+def _running_in_group(pgid: int) -> bool:
+    """Whether a process of group ``pgid`` is still running (a zombie waiting for its reaper is not)."""
+    proc = Path("/proc")
+    if not proc.is_dir():
+        try:
+            os.killpg(pgid, 0)
+        except ProcessLookupError:
+            return False
+        return True
+    for stat in proc.glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] != "Z":  # fields after the name: state, ppid, pgrp, ...
+            return True
+    return False
+
+
 def test_killed_sweep_keeps_whole_chunks_and_resumes_to_the_same_rows(tmp_path):
     """The issue's test: kill -9 mid-run, then the same command finishes without repeats or duplicates."""
     ref_path = small(tmp_path, "reference", t_end=10, chunk=4, n_rates=12)
@@ -146,7 +165,8 @@ def test_killed_sweep_keeps_whole_chunks_and_resumes_to_the_same_rows(tmp_path):
     spec = load(path)
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     cmd = [sys.executable, "-m", "verify", "sweep", str(path), "--quiet", "--threads", "1"]
-    proc = subprocess.Popen(cmd, env=env, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(cmd, env=env, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            start_new_session=True)  # its own process group: the command's child can be waited for
     deadline = time.monotonic() + 120
     done = 0
     while time.monotonic() < deadline and proc.poll() is None:
@@ -161,8 +181,14 @@ def test_killed_sweep_keeps_whole_chunks_and_resumes_to_the_same_rows(tmp_path):
             break
         time.sleep(0.05)
     assert proc.poll() is None, f"the sweep ended before it could be killed: {proc.stderr.read().decode()[-500:]}"
-    os.kill(proc.pid, signal.SIGKILL)
+    os.kill(proc.pid, signal.SIGKILL)  # the command the shell started, as a user's kill -9 does
     proc.wait()
+    # The command computes in a child (verify.guard.supervise), which the kernel kills when its parent
+    # dies (PR_SET_PDEATHSIG); the store is read only once it is gone too, so no commit lands after
+    gone = time.monotonic() + 30
+    while time.monotonic() < gone and _running_in_group(proc.pid):
+        time.sleep(0.05)
+    assert not _running_in_group(proc.pid), "the sweep's computing child outlived the killed command"
     db = sqlite3.connect(spec.store)
     chunks = db.execute("SELECT COUNT(*), COALESCE(SUM(n), 0) FROM chunks").fetchone()
     runs = db.execute("SELECT COUNT(*) FROM runs").fetchone()[0]
