@@ -149,6 +149,13 @@ class HybridSolution:
     def __getitem__(self, name):
         return self.y[STATE_NAMES.index(name)]
 
+    def __repr__(self) -> str:  # the arrays are for reading, not for printing
+        span = f"t = {float(self.t[0]):g} to {float(self.t[-1]):g} s, {len(self.t)} outputs" if len(self.t) else "no outputs"
+        kinds = [ph.kind for ph in self.phases]
+        return (f"HybridSolution(model={self.model!r}, precision={self.precision.name!r}, outcome={self.outcome!r}, "
+                f"{span}, {len(kinds)} phases ({kinds.count('rolling')} rolling, {kinds.count('sliding')} sliding), "
+                f"steps={self.steps})")
+
     # the same time-series methods as a rolling run's
     columns, save, to_csv, to_json, plot, animate, _save_as = (
         Trajectory.columns, Trajectory.save, Trajectory.to_csv, Trajectory.to_json, Trajectory.plot, Trajectory.animate,
