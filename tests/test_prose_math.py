@@ -15,14 +15,15 @@ PAGE = Path(__file__).parent.parent / "reports" / "report.html"
     ("28.0 s^-1 and 980 s^-2", "28.0 s⁻¹ and 980 s⁻²"), ("largest mu_req", "largest μ<sub>req</sub>"),
     ("psidot0^2 = g/(k+1)", "ψ̇₀² = g/(k+1)"), ("omega3 oscillates", "ω₃ oscillates"), ("g/phidot^2", "g/φ̇²"),
     ("dL/dtheta", "dL/dθ"), ("Delta theta = +0.0002", "Δθ = +0.0002"), ("x &lt;= 3", "x ≤ 3"),
-    ("I1 = 0.4993", "I₁ = 0.4993"), ("sqrt(g/R)", "√(g/R)"), ("omega_dot_i", "ω̇<sub>i</sub>"),
+    ("I1 = 0.4993", "I₁ = 0.4993"), ("mu_req; phidot0.", "μ<sub>req</sub>; φ̇₀."), ("the end of theta.", "the end of θ."), ("sqrt(g/R)", "√(g/R)"), ("omega_dot_i", "ω̇<sub>i</sub>"),
 ])
 def test_names_become_symbols(ascii_, typeset):
     assert typeset_text(ascii_) == typeset
 
 
 @pytest.mark.parametrize("kept", ["ring+air-drag", "verify/claims/paper.md", "the disk rolls", "philosophy",
-                                  "epsilons", "x.theta", "mp:128"])
+                                  "epsilons", "x.theta", "mp:128", "&pi; &mu;", "mu.csv", "theta.png", "run-mu.csv",
+                                  "https://example.org/theta/pi?mu=1"])
 def test_other_words_are_left_alone(kept):
     assert typeset_text(kept) == kept
 

@@ -313,3 +313,15 @@ def test_markup_text_escapes_outside_math_only():
     assert text("x | y", table=True) == "x \\| y"
     assert text("$|a|$ b", table=True) == "$\\|a\\|$ b"  # a table cell unescapes it before the math
     assert text("costs $5") == "costs \\$5"
+
+
+def test_the_page_keeps_every_curve_colour_of_a_figure():
+    """The 16-colour reduction keeps the style's full colours (a run's blue, a prediction's red) exactly."""
+    import numpy as np
+    from PIL import Image as PILImage
+
+    from verify.report.page import page_palette
+
+    with PILImage.open(REPORTS / "figures" / "dissipation.png") as im:
+        kept = {tuple(c) for c in np.array(page_palette(im).getpalette()[:48]).reshape(-1, 3)}
+    assert {(31, 119, 180), (214, 39, 40), (0, 0, 0), (255, 255, 255)} <= kept

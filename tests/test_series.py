@@ -153,3 +153,13 @@ def test_the_scorer_knows_the_run_format_by_name():
     from verify.series import FORMAT
 
     assert runs._SUITE_FORMAT == FORMAT
+
+
+def test_infinities_survive_every_format(tmp_path):
+    from verify.series.columns import FORMAT, RunColumns
+
+    cols = RunColumns({"t": np.array([0.0, 1.0]), "x": np.array([np.inf, -np.inf]), "y": np.array([np.nan, 0.5])},
+                      {"t": "s", "x": "R", "y": "R"}, {"format": FORMAT, "model": "disk", "precision": "double"})
+    for ext in (".csv", ".json", ".npz"):
+        back = read_run(write_run(cols, tmp_path / f"r{ext}"))
+        assert np.array_equal(back.values["x"], cols.values["x"]) and np.isnan(back.values["y"][0]), ext

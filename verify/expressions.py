@@ -25,6 +25,7 @@ _FUNCTIONS = ("sqrt", "sin", "cos", "tan", "asin", "acos", "atan", "exp", "log")
 MAX_LENGTH = 200  # characters: a start value, not a program
 MAX_EXPONENT = 1024  # |b| in a ** b, and a decimal literal's power of ten at most MAX_LITERAL_EXPONENT
 MAX_LITERAL_EXPONENT = 10_000
+MAX_DIGITS = 10_000  # digits of an exact power a ** b: beyond, sympy would build integers for minutes
 
 
 class ExpressionError(ValueError):
@@ -76,7 +77,10 @@ def exact_value(text: str, what: str = "value"):
         raise ExpressionError(f"{what} {s!r}: {err}; allowed {ALLOWED}") from None
     except (ValueError, ZeroDivisionError, OverflowError, TypeError):
         raise ExpressionError(f"{what} {s!r} has no finite real value; allowed {ALLOWED}") from None
-    numeric = sp.N(value, 30)
+    try:
+        numeric = sp.N(value, 30)
+    except (OverflowError, ValueError, ZeroDivisionError):  # exp(exp(exp(exp(10)))): beyond any float
+        raise ExpressionError(f"{what} {s!r} is too large to evaluate; allowed {ALLOWED}") from None
     if value.has(sp.zoo, sp.oo, -sp.oo, sp.nan) or not numeric.is_real or not numeric.is_finite:
         raise ExpressionError(f"{what} {s!r} = {sp.sstr(numeric)} is not a finite real number; allowed {ALLOWED}")
     return value
@@ -117,6 +121,9 @@ def _build(node, source: str, sp):
         if isinstance(node.op, ast.Pow):
             if abs(sp.N(b, 15)) > MAX_EXPONENT:
                 raise ExpressionError(f"an exponent of {sp.N(b, 6)} (allowed at most {MAX_EXPONENT} in size)")
+            if a != 0 and abs(sp.N(b, 15)) * abs(sp.N(sp.log(abs(a), 10), 15)) > MAX_DIGITS:
+                raise ExpressionError(f"a power of about 10^{sp.N(b * sp.log(abs(a), 10), 6)} (allowed results of at "
+                                      f"most {MAX_DIGITS} digits)")
             return a ** b
         raise ExpressionError(f"the operator {type(node.op).__name__} is not allowed")
     if isinstance(node, ast.Call):

@@ -193,7 +193,11 @@ def page_palette(im):
     else:
         if len(used) <= PAGE_COLOURS:
             return im
-        keep = np.sort(used[np.argsort(-counts[used], kind="stable")[:PAGE_COLOURS]])
+        # the style's full colours first (a curve's own colour, however few its pixels), then the most used steps
+        full = {tuple(np.round(np.array(to_rgb(c)) * 255)) for c in LINE_COLOURS} | {(255.0, 255.0, 255.0)}
+        pure = [u for u in used if tuple(palette[u]) in full]
+        rest = [u for u in used[np.argsort(-counts[used], kind="stable")] if u not in pure]
+        keep = np.sort(np.array((pure + rest)[:max(PAGE_COLOURS, len(pure))]))
         lut = np.zeros(len(palette), int)
         lut[used] = np.argmin(((palette[used][:, None, :] - palette[keep][None, :, :]) ** 2).sum(-1), axis=1)
         colours = palette[keep]
@@ -214,7 +218,7 @@ def lossless_webp(png: bytes) -> bytes:
     from ..provenance import write_atomic
     from .cache import default_folder
 
-    memo = default_folder() / "webp6-page-palette-3" / hashlib.sha256(png).hexdigest()
+    memo = default_folder() / "webp6-page-palette-4" / hashlib.sha256(png).hexdigest()
     try:
         return memo.read_bytes()
     except OSError:

@@ -18,8 +18,8 @@ _SUB = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
 _SUP = str.maketrans("0123456789-+/()", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻⁺ᐟ⁽⁾")
 #: the names rewritten, as a regex alternation (longest first): a Greek letter, optionally dotted, optionally
 #: with a digit subscript (theta0, phidot_0, omega3), and a few named subscripts
-_NAME = re.compile(r"(?<![A-Za-z0-9_.])(d?)(theta|phi|psi|omega|alpha|rho|mu|Delta|pi|lambda|nu|tau|epsilon|eps)"
-                   r"(?:_?(ddot|dot))?(?:_?(\d)(?!\d)|_([a-z]+))?(?![A-Za-z0-9_])")
+_NAME = re.compile(r"(?<![A-Za-z0-9_.&])(d?)(theta|phi|psi|omega|alpha|rho|mu|Delta|pi|lambda|nu|tau|epsilon|eps)"
+                   r"(?:_?(ddot|dot))?(?:_?(\d)(?!\d)|_([a-z]+))?(?![A-Za-z0-9_]|\.[a-z]{2,5}\b)")  # not a file name (&pi; is kept by the look-behind)
 _INERTIA = re.compile(r"(?<![\w./+-])I([13])(?![\w])")
 _POWER = re.compile(r"(?<=[\w)\u0307\u0308])\^(\(?-?\d+(?:/\d+)?\)?)")
 _ARROW = re.compile(r"\s-(?:>|&gt;)\s")
@@ -47,8 +47,13 @@ def _power(m: re.Match) -> str:
     return inner.translate(_SUP)
 
 
+_URL = re.compile(r"(\w+://\S+)")
+
+
 def typeset_text(text: str) -> str:
-    """One run of prose (no tags) with its ASCII math set in symbols."""
+    """One run of prose (no tags) with its ASCII math set in symbols; addresses (``https://...``) as they are."""
+    if "://" in text:
+        return "".join(part if _URL.fullmatch(part) else typeset_text(part) for part in _URL.split(text))
     text = _ARROW.sub(" → ", text)
     for ascii_, symbol in _RELATION.items():
         text = text.replace(ascii_, symbol)

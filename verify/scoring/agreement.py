@@ -121,8 +121,8 @@ class Score:
 
     @property
     def partial(self) -> bool:
-        """True when the run stops before the case's t_end."""
-        return bool(self.t[-1] < self.t_end)
+        """True when the run stops before the case's t_end (by more than rounding: 1e-12 relative)."""
+        return bool(self.t[-1] < self.t_end * (1 - 1e-12))
 
     def passes(self, min_digits: float) -> bool:
         """At least ``min_digits`` everywhere, over the whole case."""

@@ -114,7 +114,7 @@ def run_columns(sol, extra_meta: dict | None = None) -> RunColumns:
         "equations": getattr(sol, "equations", "derived"),
         "precision": p.name,
         "params": {k: p.to_text(v) for k, v in sol.params.items()},
-        "t_end": p.to_text(getattr(sol, "t_end", sol.t[-1])),
+        "t_end": p.to_text(sol.t_end) if hasattr(sol, "t_end") else (p.to_text(sol.t[-1]) if len(sol.t) else None),
         "start": {n: p.to_text(sol.y[i, 0]) for i, n in enumerate(STATE_NAMES)} if len(sol.t) else {},
         "start_time": p.to_text(sol.t[0]) if len(sol.t) else None,
         "outcome": sol.outcome,

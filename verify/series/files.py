@@ -94,6 +94,8 @@ def _json_value(value):
     if isinstance(value, (str, np.str_)):
         return str(value)
     if isinstance(value, (float, np.float64)):
+        if math.isinf(value):  # JSON has no infinity: the string, which the reader turns back into one
+            return "inf" if value > 0 else "-inf"
         return float(value) if math.isfinite(value) else None
     text = _text(value)
     return None if text == "nan" else text
