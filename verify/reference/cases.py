@@ -52,6 +52,12 @@ class ReferenceCase:
     source : str
         Where the start comes from (a paper figure, or this suite's standard state).
     description : str
+    friction : str, optional
+        The Coulomb coefficient mu (static = kinetic) of a case that rolls or slides: the run is the
+        event-driven hybrid of :mod:`verify.engine.hybrid` (``<model>+coulomb``).
+    velocity : pair of str, optional
+        The centre of mass's horizontal velocity at t = 0 of a Coulomb case that starts sliding (a
+        skid); None: it starts rolling (the velocity the no-slip constraint sets).
     """
 
     name: str
@@ -63,6 +69,18 @@ class ReferenceCase:
     source: str
     description: str
     params: dict = field(default_factory=dict)
+    friction: str | None = None
+    velocity: tuple | None = None
+
+    @property
+    def hybrid(self) -> bool:
+        """A body that rolls or slides with Coulomb friction (``<model>+coulomb``, :mod:`verify.engine.hybrid`)."""
+        return self.friction is not None
+
+    @property
+    def run_model(self) -> str:
+        """The model the run integrates: ``model``, or ``model+coulomb`` for a Coulomb case."""
+        return f"{self.model}+coulomb" if self.hybrid else self.model
 
     @property
     def exact_params(self) -> dict:
@@ -153,6 +171,8 @@ def _cases() -> tuple:
     fig16_rate = _exact(sp.sqrt(25 * G))
     fig16_theta = mpmath.nstr(_steady_theta("hurricane", fig16_rate, fig16_rate, guess="1.2"), DIGITS, strip_zeros=False)
     fig17_phidot = steady_rate("hurricane", "phidot", 60, "0.578", ratio="1.2")
+    skid_state = {"theta": "1.2", "phidot": "3", "psidot": steady_rate("ring", "psidot", -70, "1.2", COIN, phidot="3")}
+    skid_velocity = tuple(_exact(v / 2) for v in rolling_velocity("ring", skid_state, COIN))
     return (
         ReferenceCase("disk-fig2-circle", "disk", {"theta": "1.8", "phidot": "5", "psidot": fig2_psidot}, "10", 40,
                       "quiet", "paper Fig. 2 (Eq. 21 circle)",
@@ -212,8 +232,33 @@ def _cases() -> tuple:
                       "a coin: the ring model as a uniform solid cylinder of thickness 2h = R/10",
                       "a coin as engines draw one (a cylinder touching on its rim edge, half a thickness off the "
                       "mid-plane): I1 = 1/4 + h^2/3, I3 = 1/2, h = 1/20; the disk's standard start",
-                      {"I1": "301/1200", "I3": "1/2", "h": "1/20"}),
+                      COIN),
+        ReferenceCase("coin-coulomb-slip-1", "ring", _standard("disk"), "1", 32, "wild",
+                      "a coin (as coin-standard-1) with Coulomb friction mu = 0.87: rolling, a slip phase, rolling",
+                      "the coin's standard start rolling on a table with mu = 0.87 (static = kinetic): mu_req reaches "
+                      "mu near t = 0.078, the contact slides, sticks near t = 0.097 and rolls to t_end",
+                      COIN, friction="0.87"),
+        ReferenceCase("coin-coulomb-skid-1", "ring", skid_state, "1", 32, "wild",
+                      "a coin (as coin-standard-1) with Coulomb friction mu = 0.3: a skid that sticks",
+                      "the coin launched on its steady Eq. 21 circle (theta = 1.2, phidot = 3, psidot the root of the "
+                      "derived row 1) with half the rolling speed of its centre of mass: it slides, the friction "
+                      "brings the slip to 0 near t = 0.076, and it rolls to t_end",
+                      COIN, friction="0.3", velocity=skid_velocity),
     )
+
+
+#: The coin: the ring model as a uniform solid cylinder of radius R and thickness 2h = R/10 (I1 = 1/4 + h^2/3).
+COIN = {"I1": "301/1200", "I3": "1/2", "h": "1/20"}
+
+
+def rolling_velocity(model_name: str, state: dict, params: dict) -> tuple:
+    """The centre of mass's horizontal velocity (exact sympy) that rolling without slipping sets at ``state``."""
+    from models.symbols import STATE, STATE_NAMES
+
+    model = get_model(model_name)
+    subs = {p.symbol: sp.Rational(params[p.name]) if p.name in params else p.default for p in model.parameters}
+    subs.update({s: sp.Rational(state.get(n, "0")) for s, n in zip(STATE, STATE_NAMES)})
+    return tuple(sp.nsimplify(e).subs(subs) for e in model.velocity_xy)
 
 
 def _times(a: str, b: str) -> str:
