@@ -69,6 +69,10 @@ def __getattr__(attr: str):
         from .base import Model
 
         return Model
+    if attr in ("body_of_revolution", "load_body"):  # a body of revolution from its profile (models.bodies)
+        from . import bodies
+
+        return bodies.body_of_revolution if attr == "body_of_revolution" else bodies.load
     try:
         return importlib.import_module(f".{attr}", __name__)
     except ModuleNotFoundError:
@@ -76,4 +80,4 @@ def __getattr__(attr: str):
 
 
 __all__ = ["ALIASES", "ALL_NAMES", "COULOMB_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES",
-           "get_model", "sources"]
+           "body_of_revolution", "get_model", "load_body", "sources"]
