@@ -178,6 +178,16 @@ def model_of(body: Body):
     return replace(model, relations=(AXIAL_BOUND,) + relations)
 
 
+def contact_vector(body: Body) -> tuple:
+    """(I1, I3, r2, r3) of ``body`` with the symbols of its model (:func:`model_of`): what the sliding phase of
+    a Coulomb body (:func:`models.coulomb.body`) is derived from."""
+    from .common import inertia_parameters as _ip
+
+    p1, p3 = _ip(body.I1, body.I3, "M L^2")
+    _, symbols = _shape_parameters(body)
+    return (p1.symbol, p3.symbol, *vector(body.kind, symbols))
+
+
 def _with(rule, fixed: dict, same: dict):
     """A relation of the profile's numbers, given the run's parameters: the constants and shared symbols added."""
     def check(params):
