@@ -15,6 +15,10 @@ centre of mass and, optionally, a narrower domain of tilts::
     I3 = "1/2"
     [domain]                   # optional: theta_min, theta_max inside the profile's own domain
     theta_max = "pi/2"
+    [start]                    # optional: the body's default start (unset components 0)
+    theta = "1.2"
+    phidot = "1"
+    psidot = "10"
 
 Numbers are strings read exactly (decimals and fractions; a domain end may be a multiple of pi).  The
 equations are those of every body (:func:`models.rolling.derive`, paper Eqs. 5-8 and 73) with the
@@ -61,6 +65,7 @@ class Body:
     I3: sp.Expr
     theta_min: sp.Expr | None = None
     theta_max: sp.Expr | None = None
+    start: tuple = ()  # ((state name, exact value), ...): the file's default start, or none
 
     @property
     def values(self) -> dict:
@@ -86,7 +91,7 @@ def exact(text, what: str) -> sp.Expr:
 
 def body_from_mapping(data: dict, source: str = "the body") -> Body:
     """A :class:`Body` from a body file's fields (a parsed TOML document)."""
-    known = {"name", "description", "profile", "inertia", "domain"}
+    known = {"name", "description", "profile", "inertia", "domain", "start"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise InvalidBody(f"{source}: unknown key {unknown[0]!r}; allowed: {', '.join(sorted(known))}")
@@ -106,18 +111,37 @@ def body_from_mapping(data: dict, source: str = "the body") -> Body:
     if not isinstance(domain, dict) or set(domain) - {"theta_min", "theta_max"}:
         raise InvalidBody(f"{source}: [domain] takes theta_min and theta_max only")
     lo, hi = (exact(domain[k], f"domain.{k}") if k in domain else None for k in ("theta_min", "theta_max"))
+    start = data.get("start", {})
+    names = ("theta", "phi", "psi", "thetadot", "phidot", "psidot", "x", "y")
+    if not isinstance(start, dict) or set(start) - set(names):
+        raise InvalidBody(f"{source}: [start] takes the state's names only ({', '.join(names)})")
     body = Body(name, str(data.get("description", "")), kind,
                 tuple((f, fields[f]) for f in FIELDS.get(kind, ()) if f in fields) + tuple(
-                    (f, v) for f, v in fields.items() if f not in FIELDS.get(kind, ())), I1, I3, lo, hi)
+                    (f, v) for f, v in fields.items() if f not in FIELDS.get(kind, ())), I1, I3, lo, hi,
+                tuple((n, exact(start[n], f"start.{n}")) for n in names if n in start))
     check(body)
     return body
 
 
 def check(body: Body) -> None:
-    """Every rule of a body (:mod:`models.profiles`): the profile, the inertia, the domain."""
+    """Every rule of a body (:mod:`models.profiles`): the profile, the inertia, the domain, the start's tilt."""
     c = contact(body.kind, body.values)
     check_inertia(body.I1, body.I3)
-    check_domain(c, body.theta_min, body.theta_max)
+    lo, hi = check_domain(c, body.theta_min, body.theta_max)
+    tilt = dict(body.start).get("theta")
+    if tilt is not None and not lo < tilt < hi:
+        raise InvalidBody(f"start.theta = {tilt}: outside the body's domain ({lo}, {hi})")
+
+
+def default_start(body: Body) -> tuple:
+    """(state, words): the file's [start], or theta in the middle of the domain with phidot = 1, psidot = 10."""
+    if body.start:
+        return dict(body.start), f"the start in {body.name}.toml's [start]"
+    c = contact(body.kind, body.values)
+    lo, hi = check_domain(c, body.theta_min, body.theta_max)
+    middle = sp.nsimplify((lo + hi) / 2)
+    return ({"theta": middle, "phidot": sp.Integer(1), "psidot": sp.Integer(10)},
+            f"the default start of a body: theta = {middle} (the middle of its domain), phidot = 1, psidot = 10")
 
 
 def load(path) -> Body:
@@ -239,5 +263,5 @@ def fingerprint(body: Body) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-__all__ = ["Body", "DIRECTORY", "InvalidBody", "body_from_mapping", "body_of_revolution", "check", "exact",
+__all__ = ["Body", "DIRECTORY", "InvalidBody", "body_from_mapping", "body_of_revolution", "check", "default_start", "exact",
            "fingerprint", "load", "model_of", "shipped"]

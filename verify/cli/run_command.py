@@ -142,7 +142,7 @@ def read_request(args) -> RunRequest:
 def _body_request(args, state: dict, params: dict) -> RunRequest:
     """The run of ``--body FILE``: the body's model, --state (default: tilted to the middle of its domain,
     phidot 1, psidot 10), --param I1/I3/g, --t-end (default 2 s)."""
-    from models.bodies import InvalidBody, load, model_of
+    from models.bodies import InvalidBody, default_start, load, model_of
 
     if args.model is not None or args.start is not None:
         raise UsageError(f"--body {args.body} is the body: drop the model {args.model or ''}{' and ' if args.model and args.start else ''}"
@@ -152,15 +152,12 @@ def _body_request(args, state: dict, params: dict) -> RunRequest:
     if args.equations != "derived":
         raise UsageError(f"--equations {args.equations!r}: a body file has the derived equations only")
     try:
-        model = model_of(load(args.body))
+        body = load(args.body)
+        model = model_of(body)
     except InvalidBody as err:
         raise UsageError(str(err)) from None
     if not state:
-        import sympy as sp
-
-        middle = (model.domain.theta_min + model.domain.theta_max) / 2
-        state = {"theta": sp.nsimplify(middle), "phidot": sp.Integer(1), "psidot": sp.Integer(10)}
-        how = f"the default start of a body: theta = {middle} (the middle of its domain), phidot = 1, psidot = 10"
+        state, how = default_start(body)
     else:
         how = "--state as given, unset components 0"
     t_end = DEFAULT_T_END if args.t_end is None else str(_positive(args.t_end, "--t-end", "2 (seconds)"))
