@@ -34,6 +34,8 @@ outside the body, a domain that lets the contact reach a corner of the profile.
 from __future__ import annotations
 
 import hashlib
+import os
+import pickle
 import re
 import tomllib
 from dataclasses import dataclass, replace
@@ -183,7 +185,60 @@ def body_of_revolution(kind: str, I1, I3, *, name: str = "body", description: st
 
 @lru_cache(maxsize=None)
 def model_of(body: Body):
-    """The rolling model of ``body`` (derived once per body: cached on the body's exact data)."""
+    """The rolling model of ``body``: derived once per body and kept on disk (:func:`cached_derivation`), so a
+    second process pays nothing for sympy; in memory once per process."""
+    model = cached_derivation(body)
+    fixed, same = _fixed_and_shared(body)
+    relations = tuple((text, _with(rule, fixed, same)) for text, rule in RELATIONS.get(body.kind, ()))
+    return replace(model, relations=(AXIAL_BOUND,) + relations)
+
+
+def cache_directory() -> Path:
+    """Where derived bodies are kept: ``$HEYOKA_CACHE_DIR/bodies`` (the suite's cache folder), else
+    ``~/.cache/rolling-verify/bodies``."""
+    base = os.environ.get("HEYOKA_CACHE_DIR")
+    return Path(base) / "bodies" if base else Path.home() / ".cache" / "rolling-verify" / "bodies"
+
+
+def cached_derivation(body: Body):
+    """The derived model of ``body`` without its relations (which hold functions, not data), from the disk cache
+    when it holds one made by the same sources; keyed by the body's exact data (:func:`fingerprint`), the
+    sources of the derivation and sympy's version.  A cache that cannot be read or written is only skipped."""
+    key = hashlib.sha256((fingerprint(body) + _sources_hash() + sp.__version__).encode()).hexdigest()
+    path = cache_directory() / f"{body.name}-{key[:24]}.pickle"
+    try:
+        with open(path, "rb") as f:
+            return pickle.load(f)
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError):
+        pass
+    model = _derive(body)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_bytes(pickle.dumps(model))
+        os.replace(tmp, path)
+    except OSError:
+        pass
+    return model
+
+
+@lru_cache(maxsize=None)
+def _sources_hash() -> str:
+    here = Path(__file__).resolve().parent
+    h = hashlib.sha256()
+    for name in ("base", "bodies", "build", "common", "profiles", "rolling", "symbols"):
+        h.update((here / f"{name}.py").read_bytes())
+    return h.hexdigest()
+
+
+def _fixed_and_shared(body: Body) -> tuple:
+    _, symbols = _shape_parameters(body)
+    fixed = {f: float(v) for f, v in symbols.items() if isinstance(v, sp.Integer)}
+    same = {"tube_radius": "half_thickness"} if symbols.get("tube_radius") is symbols.get("half_thickness", 0) else {}
+    return fixed, same
+
+
+def _derive(body: Body):
     c = contact(body.kind, body.values)
     lo, hi = check_domain(c, body.theta_min, body.theta_max)
     below = c.below if lo == c.theta_min else "domain_min"
@@ -193,13 +248,9 @@ def model_of(body: Body):
     shape, symbols = _shape_parameters(body)
     r2, r3 = vector(body.kind, symbols)
     extra = _sphere_integrals(I1, I3, r2, r3) if body.kind == "sphere" else ()
-    model = rolling_model(f"body:{body.name}", body.description or f"{body.kind} body '{body.name}'",
-                          (p1, p3, *shape, GRAVITY), I1, I3, r2, r3, Domain(lo, hi, below, above), unit="M L^2",
-                          extra_invariants=extra, theta_ref=(lo + hi) / 2)
-    fixed = {f: float(v) for f, v in symbols.items() if isinstance(v, sp.Integer)}
-    same = {"tube_radius": "half_thickness"} if symbols.get("tube_radius") is symbols.get("half_thickness", 0) else {}
-    relations = tuple((text, _with(rule, fixed, same)) for text, rule in RELATIONS.get(body.kind, ()))
-    return replace(model, relations=(AXIAL_BOUND,) + relations)
+    return rolling_model(f"body:{body.name}", body.description or f"{body.kind} body '{body.name}'",
+                         (p1, p3, *shape, GRAVITY), I1, I3, r2, r3, Domain(lo, hi, below, above), unit="M L^2",
+                         extra_invariants=extra, theta_ref=(lo + hi) / 2)
 
 
 def contact_vector(body: Body) -> tuple:

@@ -162,3 +162,16 @@ def test_a_shipped_body_rolls_and_slides_with_coulomb_friction_keeping_jellett_t
     assert np.max(np.abs(values - values[0])) <= 64 * 2.0 ** -52 * math.sqrt(sol.steps) * scale
     with pytest.raises(ValueError, match="unknown body"):
         get_model("body:no-such-body")
+
+
+def test_a_derived_body_is_kept_on_disk_and_read_back_as_the_same_model(tmp_path, monkeypatch):
+    from models import bodies
+
+    monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
+    body = load("routh-sphere")
+    first = bodies.cached_derivation(body)  # derived, then written
+    (written,) = (tmp_path / "bodies").glob("routh-sphere-*.pickle")
+    again = bodies.cached_derivation(body)  # read back
+    assert again == first and again is not first
+    written.write_bytes(b"not a pickle")  # a damaged cache is derived again, not trusted
+    assert bodies.cached_derivation(body) == first
