@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from models.catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES, STATE_NAMES
 
-from ..guard import Session
+from ..guard import Session, isatty
 from .arguments import (N_EVAL_MAX, RunFailed, UsageError, _decimal, _positive, _positive_int, _precision, _shown,
                         _value_pairs)
 
@@ -241,7 +241,10 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
     friction = None if request.friction is None else _positive(request.friction, "--friction",
                                                                 "0.5 (a friction coefficient)")
     model = request.body or get_model(request.model, request.equations)
-    show = args.progress if getattr(args, "progress", None) is not None else getattr(args, "format", "text") == "text"
+    # by default only where a person watches: text output and stderr a terminal (a log or a test's captured stderr
+    # would otherwise gain lines that depend on how long the compilation took: on the machine's load)
+    show = args.progress if getattr(args, "progress", None) is not None else (
+        getattr(args, "format", "text") == "text" and isatty(sys.stderr))
     bar = _Progress(sys.stderr, label, request.t_end, show)
     with bar:
         try:
@@ -276,7 +279,7 @@ def add_trajectory_parser(sub) -> None:
                    help="draw the run: FILE.png, FILE.svg or FILE.pdf (path, theta, phi, omega3, energy, normal force)")
     t.add_argument("--format", choices=("json", "text"), default="text", help="what is printed: text (default) or JSON")
     t.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress on stderr once a second after the first two (default: on with --format text, off with json)")
+                   help="progress on stderr once a second after the first two (default: on where stderr is a terminal and the format is text)")
     t.set_defaults(run=cmd_trajectory)
 
 
