@@ -61,7 +61,7 @@ class SmoothSolution:
     y : ndarray (11, n)
         :data:`models.smooth_friction.STATE_NAMES`: the eight (phi, psi continuous), slip_e1, slip_h, work.
     energy, work, normal_force, height, jellett : ndarray (n,)
-        E per unit mass, W, N/(Mg), z_C, and Jellett's lambda (None for a body that is not a sphere).
+        E per unit mass, W (the state's ``work`` is W / g), N/(Mg), z_C, and Jellett's lambda (None for a body that is not a sphere).
     energy_plus_work_drift_in_eps : float
         max over the outputs of |E + W - E(0)| / (eps E's term scale up to that output).
     jellett_drift_in_eps : float or None
@@ -265,14 +265,15 @@ def _record(c: _Compiled, prec, pars, par_vector, t, y, label, steps) -> SmoothS
     has_j = c.n_jellett_terms > 0
     first = 4 if has_j else 3
     energy, normal, height = out[0], out[1], out[2]
+    work = y[_WORK] * pars["g"]  # the state holds W / g (models.smooth_friction)
     e_scale = np.sum(np.abs(out[first:first + c.n_energy_terms]), axis=0)
-    drift = balance_drift_in_eps(energy, y[_WORK], e_scale, prec.eps)
+    drift = balance_drift_in_eps(energy, work, e_scale, prec.eps)
     jellett = j_drift = None
     if has_j:
         jellett = out[3]
         j_scale = np.sum(np.abs(out[first + c.n_energy_terms:]), axis=0)
         j_drift = float(np.max(balance_drift_in_eps(jellett, [prec.zero()] * len(t), j_scale, prec.eps)))
-    return SmoothSolution(c.rolling.name, prec, pars, t, y, energy, y[_WORK], normal, height, jellett,
+    return SmoothSolution(c.rolling.name, prec, pars, t, y, energy, work, normal, height, jellett,
                           float(np.max(drift)), j_drift, label, steps,
                           message="t_end reached" if label == "ok" else f"stopped at {label}")
 
