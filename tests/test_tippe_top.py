@@ -9,6 +9,7 @@ vertical (where phi-dot and psi-dot grow like 1/theta and cancel in omega3) are 
 """
 from __future__ import annotations
 
+import json
 import math
 
 import mpmath
@@ -172,3 +173,29 @@ def test_the_study_agrees_with_the_energy_jellett_prediction_and_the_inversion_t
     assert times[0.1] > 3 * times[1] and times[100] > 3 * times[10]  # ~1/eps below, ~eps above
     for r in result["coulomb"]:
         assert r["verdict"] == "upright" and [p[0] for p in r["phases"]] == ["sliding", "rolling"]
+
+
+def _cli(capsys, *argv):
+    from verify.cli import main
+
+    code = main(list(argv))
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_the_command_line_runs_the_tippe_top_under_both_laws_and_refuses_half_options(capsys):
+    start = ["--body", "tippe-top", "--state", "theta=0.1", "--state", "psidot=200", "--velocity", "0,0"]
+    code, out, _ = _cli(capsys, "trajectory", *start, "--friction", "0.3", "--friction-law", "smooth",
+                        "--slip-scale", "10", "--t-end", "2", "--format", "json")
+    record = json.loads(out)
+    assert code == 0 and record["model"] == "body:tippe-top+smooth" and record["max_theta"] > 3.0
+    assert record["energy_plus_work_drift_in_eps"] < 100 and record["jellett_drift_in_eps"] < 100
+    code, out, _ = _cli(capsys, "trajectory", *start, "--friction", "0.3", "--t-end", "0.5", "--format", "json")
+    record = json.loads(out)
+    assert code == 0 and [p["kind"] for p in record["phases"]] == ["sliding", "rolling"]
+    for extra, words in ((["--friction", "0.3", "--friction-law", "smooth"], "needs --slip-scale"),
+                         (["--slip-scale", "1"], "take --friction"),
+                         (["--friction", "0.3", "--slip-scale", "1"], "add --friction-law smooth"),
+                         (["--friction", "0.3", "--friction-law", "smooth", "--slip-scale", "0"], "--slip-scale")):
+        code, _, err = _cli(capsys, "trajectory", *start, *extra)
+        assert code == 2 and words in err

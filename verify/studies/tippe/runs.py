@@ -162,15 +162,17 @@ def text(result: dict) -> str:
         lines.append(f"  theta0 = {START_TILT}: energy bound n_E = {th['energy_bound']:.6f} s^-1, inverted spin a minimum "
                      f"above n_s = {ns}, upright spin unstable above n_u = {nu}")
     lines.append("")
+    lines.append("predicted: by Jellett's integral and the energy (the only minimum of V_lambda within the start's reach), "
+                 "for a law under which the contact slips until the motion is steady")
     lines.append("law      body               spin    eps   verdict  (predicted)   t(theta>2.5)  t(z_C>R+c-0.01)  "
-                 "end theta   E+W [eps]  Jellett [eps]  steps")
+                 "end theta  min theta   E+W [eps]  Jellett [eps]  steps")
     for r in result["smooth"] + result["coulomb"]:
         p = result["predictions"][f"{r['body']}@{r['spin']:g}"]
         pred = p["verdict"] + (f" {p['theta']:.4f}" if p["verdict"] == "tilted" else "")
         eps = f"{r['eps']:g}" if r["law"] == "smooth" else "-"
         fmt = (lambda x: "-" if x is None else f"{x:.3f}")
         lines.append(f"{r['law']:8} {r['body']:18} {r['spin']:5g} {eps:>6}  {r['verdict']:8} ({pred:15}) "
-                     f"{fmt(r['t_theta']):>12}  {fmt(r['t_height']):>15}  {r['end_theta']:9.4f}  "
+                     f"{fmt(r['t_theta']):>12}  {fmt(r['t_height']):>15}  {r['end_theta']:9.4f}  {r['min_theta']:9.2g}  "
                      f"{r['energy_plus_work_in_eps']:9.3g}  {r['jellett_in_eps']:13.3g}  {r['steps']:6d}")
         if r["law"] == "coulomb":
             phases = ", ".join(f"{k} {a:.4g}-{b:.4g} s ({e})" for k, a, b, e in r["phases"])
