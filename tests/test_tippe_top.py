@@ -108,6 +108,10 @@ def test_the_negative_controls_a_spin_below_n_s_ends_tilted_and_the_stable_body_
     below = runs.smooth_case("tippe-top", 100, 10, "40", n_eval=2001)
     assert below["verdict"] == "tilted" and below["t_theta"] is None and below["t_height"] is None
     assert abs(below["end_theta"] - 1.83729110676207) < 2e-3 and below["max_theta"] < 2.2
+    low = runs.smooth_case("tippe-top", 50, 10, "40", n_eval=401)  # below n_E: settles at 0.8892 and has lost
+    p = theory.predict(theory.top("tippe-top"), "50", "1/10")    # exactly E0 - V_lambda(theta*) to friction
+    assert low["verdict"] == "tilted" and abs(low["end_theta"] - float(p["theta"])) < 1e-4
+    assert abs(low["work"] - float(p["energy"] - p["inside"][0][1])) < 1e-6 * low["energy0"]
     stable = runs.smooth_case("tippe-top-stable", 200, 10, "20", n_eval=2001)
     reach = theory.predict(theory.top("tippe-top-stable"), "200", "1/10")["reach"][1]
     assert stable["verdict"] == "upright" and stable["max_theta"] <= float(reach)  # the energy's bound, 0.397

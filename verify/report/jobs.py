@@ -67,6 +67,8 @@ def registry() -> list:
     jobs += [Job(f"retrograde/{m}", "retrograde_job", (m,), ("verify.studies.retrograde", "verify.report.retrograde"))
              for m in MECHANISMS]
     jobs += friction_jobs()
+    jobs.append(Job("tippe-top", "tippe_top_job", (), ("verify.studies.tippe.report",),
+                    tuple(str(p) for p in _tippe_files())))
     index = read_index()
     index_file = str(DIRECTORY / "index.json")
     for precision in REFERENCE_PRECISIONS:
@@ -228,6 +230,19 @@ def coulomb_examples_job() -> JobOutput:
     from ..studies.coulomb_examples import examples
 
     return JobOutput(examples())
+
+
+def _tippe_files() -> list:
+    from models.bodies import DIRECTORY
+
+    return sorted(DIRECTORY.glob("tippe-top*.toml"))
+
+
+def tippe_top_job() -> JobOutput:
+    """The tippe top under the smooth law and exact Coulomb friction (:mod:`verify.studies.tippe`, ~80 s)."""
+    from ..studies.tippe.report import job_data
+
+    return JobOutput(job_data())
 
 
 def friction_slip_job(law: str) -> JobOutput:

@@ -135,6 +135,10 @@ def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] 
     if studies.get("friction") is not None:  # absent from a results.json made before the section
         out += guarded("Friction", lambda: _split_h2("\n".join(render_friction(studies["friction"],
                                                                                studies.get("dissipation")))))
+    if studies.get("tippe_top") is not None:  # absent from a results.json made before the section
+        from ..studies.tippe.report import render_markdown as render_tippe
+
+        out += guarded("Tippe top", lambda: _split_h2(render_tippe(studies["tippe_top"])))
     from .engines import render_markdown as render_engines
 
     out += _split_h2("\n".join(render_engines(engines)))

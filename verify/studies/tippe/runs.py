@@ -10,8 +10,10 @@ slips at |omega x r_P| = n R sin theta0 at t = 0), friction mu = 0.3, g = 980 (R
 * ``t_height``: the first output time where the height of C, evaluated by the model's own z_C expression
   (heyoka cfunc of the state), is within :data:`HEIGHT_MARGIN` = 0.01 R of its inverted value R + c.
 
-The verdict ``inverts`` needs both, and the run's last tenth above 2.5 rad; ``upright`` is a last tenth below
-0.5 rad; anything else ends ``tilted`` at the mean theta of the last tenth.  Exact Coulomb runs
+The verdict ``inverts`` needs both, and the run's last tenth above 2.5 rad; ``turning`` has passed 2.5 rad but
+not settled by the end; ``upright`` is a last tenth below 0.5 rad; anything else ends ``tilted`` at the mean
+theta of the last tenth.  The work done by friction is checked too: a run that has settled at a minimum of
+V_lambda has lost exactly E0 - V_lambda(theta*) (:mod:`.theory`).  Exact Coulomb runs
 (:func:`verify.engine.hybrid.solve`) are read the same way, with their phases (slides, sticks, rolls).
 """
 from __future__ import annotations
@@ -46,6 +48,8 @@ def measures(t, theta, height, top: theory.Top) -> dict:
     end = float(np.mean(tail))
     if t_theta is not None and t_height is not None and tail.min() > THETA_INVERTED:
         verdict = "inverts"
+    elif t_theta is not None:
+        verdict = "turning"  # passed 2.5 rad, not yet settled inverted at the end of the run
     elif tail.max() < 0.5:
         verdict = "upright"
     else:
