@@ -177,6 +177,10 @@ def test_the_study_agrees_with_the_energy_jellett_prediction_and_the_inversion_t
     assert times[0.1] > 3 * times[1] and times[100] > 3 * times[10]  # ~1/eps below, ~eps above
     for r in result["coulomb"]:
         assert r["verdict"] == "upright" and [p[0] for p in r["phases"]] == ["sliding", "rolling"]
+    from verify.studies.tippe.report import render_markdown
+
+    section = render_markdown(json.loads(json.dumps(result)))  # as results.json carries it
+    assert section.startswith("## Tippe top") and "147.410347" in section
 
 
 def _cli(capsys, *argv):
