@@ -9,6 +9,7 @@ from .commands import (cmd_bench, cmd_engines, cmd_models, cmd_plot, cmd_referen
 from .animate_command import add_parser as add_animate_parser
 from .figure_command import add_parser as add_figure_parser
 from .run_command import add_trajectory_parser
+from ..studies.tippe.command import add_parser as add_tippe_top_parser
 
 #: --help's first line
 DESCRIPTION = ("Bodies rolling on a plane, verified.  First steps: 'python -m verify trajectory disk --plot run.png', "
@@ -32,6 +33,7 @@ def parser() -> argparse.ArgumentParser:
     add_trajectory_parser(sub)
     add_figure_parser(sub)
     add_animate_parser(sub)
+    add_tippe_top_parser(sub)
 
     pl = sub.add_parser("plot", help="draw a saved run (a file of 'trajectory --output')")
     pl.add_argument("run_file", metavar="RUN", help="RUN.csv, RUN.json or RUN.npz written by 'trajectory --output'")

@@ -47,6 +47,11 @@ def add_run_options(p: argparse.ArgumentParser) -> None:
                         "body's name (rounded-coin, routh-sphere, prolate-ellipsoid, ...: models/bodies/)")
     p.add_argument("--velocity", default=None, metavar="VX,VY",
                    help="disk+coulomb, ring+coulomb: the centre of mass's horizontal velocity at t = 0 (default: rolling)")
+    p.add_argument("--friction-law", default="coulomb", choices=("coulomb", "smooth"),
+                   help="with --body and --friction: exact Coulomb friction (default; rolls, slides, sticks) or the "
+                        "smooth law -mu N u/sqrt(|u|^2 + eps^2) (docs/tippe-top.md)")
+    p.add_argument("--slip-scale", default=None, metavar="EPS",
+                   help="--friction-law smooth: the slip scale eps of the smooth law, in R/s")
 
 
 @dataclass(frozen=True)
@@ -65,6 +70,8 @@ class RunRequest:
     n_eval: int | None = None  # the start's own output grid (a figure's), unless --n-eval is given
     events: bool = True  # False only for a start its source ran without events (Fig. 12)
     body: object = None  # the Model of --body FILE (models.bodies), in place of a model name
+    law: str = "coulomb"  # --friction-law, with --body and --friction
+    slip_scale: object = None  # --slip-scale, with --friction-law smooth
 
 
 def read_request(args) -> RunRequest:
@@ -147,8 +154,11 @@ def _body_request(args, state: dict, params: dict) -> RunRequest:
     if args.model is not None or args.start is not None:
         raise UsageError(f"--body {args.body} is the body: drop the model {args.model or ''}{' and ' if args.model and args.start else ''}"
                          f"{'--start ' + args.start if args.start else ''}")
-    if args.friction is not None or args.velocity is not None:
-        raise UsageError("--body runs roll without slipping; --friction and --velocity are not built for body files yet")
+    law = getattr(args, "friction_law", "coulomb")
+    if args.friction is None and (args.velocity is not None or law != "coulomb" or getattr(args, "slip_scale", None)):
+        raise UsageError("--velocity, --friction-law and --slip-scale take --friction MU with --body")
+    if args.friction is None and args.velocity is not None:
+        raise UsageError("--body runs roll without slipping unless --friction MU is given")
     if args.equations != "derived":
         raise UsageError(f"--equations {args.equations!r}: a body file has the derived equations only")
     try:
@@ -165,7 +175,32 @@ def _body_request(args, state: dict, params: dict) -> RunRequest:
         how += f", t_end {DEFAULT_T_END} s (the default; --t-end to change)"
     given = {"body": str(args.body), "state": {k: str(v) for k, v in state.items()},
              "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end}
-    return RunRequest(model.name, "derived", params, state, str(t_end), None, None, how, given, body=model)
+    if args.friction is None:
+        return RunRequest(model.name, "derived", params, state, str(t_end), None, None, how, given, body=model)
+    return _friction_body_request(args, model, params, state, str(t_end), how, given, law)
+
+
+def _friction_body_request(args, model, params, state, t_end, how, given, law) -> RunRequest:
+    """``--body NAME --friction MU``: a shipped body under exact Coulomb friction (the hybrid of
+    :mod:`verify.engine.hybrid`, ``body:NAME+coulomb``) or the smooth law (:mod:`verify.engine.smooth`)."""
+    from models.bodies import shipped
+
+    name = model.name[len("body:"):]
+    if name not in shipped() or str(args.body) not in (name, model.name):
+        raise UsageError(f"--body {args.body} --friction: friction is built for the shipped bodies only "
+                         f"({', '.join(shipped())}), by name")
+    if getattr(args, "output", None) is not None or getattr(args, "plot", None) is not None:
+        raise UsageError("--body with --friction prints the run; --output and --plot are not built for it yet")
+    eps = getattr(args, "slip_scale", None)
+    if law == "smooth" and eps is None:
+        raise UsageError("--friction-law smooth needs --slip-scale EPS (the slip scale, e.g. 1)")
+    if law == "coulomb" and eps is not None:
+        raise UsageError("--slip-scale is the smooth law's; add --friction-law smooth")
+    how += f"; {law} friction mu = {args.friction}" + (f", slip scale eps = {eps}" if eps is not None else "")
+    given = {**given, "friction": args.friction, "friction_law": law, "slip_scale": eps, "velocity": args.velocity}
+    model_name = f"body:{name}+coulomb" if law == "coulomb" else f"body:{name}+smooth"
+    return RunRequest(model_name, "derived", params, state, t_end, args.friction, args.velocity, how, given,
+                      law=law, slip_scale=eps)
 
 
 def _short(value) -> str:
@@ -204,7 +239,9 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
 
     precision = _precision(args.precision)
     tol = getattr(args, "tol", None)
-    if request.model in COULOMB_NAMES:
+    if request.law == "smooth":
+        return _run_smooth(request, args, precision, tol)
+    if request.model in COULOMB_NAMES or request.model.endswith("+coulomb"):
         if request.equations != "derived" or tol is not None or getattr(args, "high_accuracy", False):
             raise UsageError(f"{request.model} takes the derived equations at the precision's epsilon only "
                              "(no --equations paper, --tol, --high-accuracy)")
@@ -260,6 +297,57 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
     return sol, None
 
 
+def _run_smooth(request: RunRequest, args, precision, tol):
+    """The smooth-law run of a shipped body (:func:`verify.engine.smooth.solve`)."""
+    from ..engine import smooth
+    from ..engine.errors import IntegrationError
+
+    if request.equations != "derived" or tol is not None or getattr(args, "high_accuracy", False):
+        raise UsageError("--friction-law smooth takes the derived equations at the precision's epsilon only "
+                         "(no --equations paper, --tol, --high-accuracy)")
+    friction = _positive(request.friction, "--friction", "0.3 (a friction coefficient > 0)")
+    eps = _positive(request.slip_scale, "--slip-scale", "1 (the slip scale in R/s, > 0)")
+    velocity = None
+    if request.velocity is not None:
+        velocity = request.velocity.split(",")
+        if len(velocity) != 2:
+            raise UsageError(f"--velocity {_shown(request.velocity)}; allowed: two numbers VX,VY")
+        velocity = [_decimal(v, "--velocity VX,VY") for v in velocity]
+    body = request.model[len("body:"):-len("+smooth")]
+    try:
+        return smooth.solve(body, request.t_end, request.state, request.params, friction=friction, slip_scale=eps,
+                            velocity=velocity, precision=precision, n_eval=getattr(args, "_n_eval", 101)), None
+    except ValueError as err:
+        raise UsageError(str(err)) from None
+    except IntegrationError as err:
+        raise RunFailed(f"{err} ({err.outcome})") from None
+
+
+def smooth_record(sol) -> dict:
+    """The JSON object of a smooth-law run: the end state, E + W and Jellett's drift, the slip."""
+    from models.smooth_friction import STATE_NAMES as SMOOTH_NAMES
+
+    p = sol.precision
+    return {"model": sol.model + "+smooth", "precision": p.name, "params": {k: p.to_json(v) for k, v in sol.params.items()},
+            "outcome": sol.outcome, "message": sol.message, "steps": sol.steps, "t": p.to_json(sol.t[-1]),
+            "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(SMOOTH_NAMES)},
+            "max_theta": float(max(float(v) for v in sol["theta"])), "height": p.to_json(sol.height[-1]),
+            "energy_plus_work_drift_in_eps": sol.energy_plus_work_drift_in_eps,
+            "jellett_drift_in_eps": sol.jellett_drift_in_eps}
+
+
+def smooth_text(record: dict) -> str:
+    lines = [f"{record['model']} ({record['precision']}), mu = {record['params']['mu']}, eps = {record['params']['eps']}: "
+             f"{record['outcome']} at t = {record['t']}"]
+    lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
+    lines.append(f"  max theta {record['max_theta']:.6g} rad, z_C at the end {record['height']}")
+    jellett = record["jellett_drift_in_eps"]
+    lines.append(f"  E + W drift: {record['energy_plus_work_drift_in_eps']:.3g} eps of E's term scale"
+                 + ("" if jellett is None else f"; Jellett's lambda: {jellett:.3g} eps of its term scale")
+                 + f"; {record['steps']} Taylor steps")
+    return "\n".join(lines)
+
+
 def add_trajectory_parser(sub) -> None:
     t = sub.add_parser("trajectory", help="integrate one model from one start; print, keep (--output) and draw (--plot) it",
                        description="Integrate one model from one start.  Examples: 'trajectory disk' (its default start), "
@@ -296,10 +384,17 @@ def cmd_trajectory(args, session: Session) -> int:
     kept = out is not None or picture is not None
     n_eval = output_points(args, request, kept)
     _precision(args.precision)
+    args._n_eval = n_eval
     sol, failure = run(request, args, session, n_eval, f"trajectory {request.model}")
     from .output import _dumps, _not_ok, coulomb_record, coulomb_text, trajectory_record, _text
 
     hybrid = hasattr(sol, "phases")
+    if request.law == "smooth":
+        record = smooth_record(sol)
+        record["start"] = request.start
+        session.emit(_dumps(record) if args.format == "json" else
+                     "\n".join([smooth_text(record), f"start       {request.start}"]))
+        return 0
     if hybrid:
         record = coulomb_record(sol, failure)
     else:
@@ -356,6 +451,8 @@ def _keep(sol, request: RunRequest, out, picture) -> list:
 
 def _next_step(args, request: RunRequest, out) -> str:
     """One line pointing to what a person might do next with this run (the options as typed)."""
+    if "friction_law" in request.given:  # a body with friction: --output and --plot are not built for it
+        return "next        python -m verify tippe-top   (the tippe top under both laws, against its thresholds)"
     if out is not None:
         return (f"next        python -m verify plot {out} --out run.png   |   "
                 f"python -m verify animate {out} --out run.gif")
@@ -370,7 +467,9 @@ def _typed(args) -> list:
     for option, value in (("--body", getattr(args, "body", None)), ("--start", args.start), ("--t-end", args.t_end), ("--friction", args.friction),
                           ("--precision", None if args.precision == "double" else args.precision),
                           ("--equations", None if args.equations == "derived" else args.equations),
-                          ("--velocity", args.velocity)):
+                          ("--velocity", args.velocity),
+                          ("--friction-law", None if getattr(args, "friction_law", "coulomb") == "coulomb" else args.friction_law),
+                          ("--slip-scale", getattr(args, "slip_scale", None))):
         if value is not None:
             words += [option, value]
     for option, values in (("--param", args.param), ("--state", args.state)):

@@ -69,6 +69,8 @@ def registry() -> list:
     jobs += friction_jobs()
     jobs.append(Job("bodies", "verify.studies.bodies:rows_job", (), ("verify.studies.bodies",),
                     tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
+    jobs.append(Job("tippe-top", "tippe_top_job", (), ("verify.studies.tippe.report",),
+                    tuple(str(p) for p in _tippe_files())))
     index = read_index()
     index_file = str(DIRECTORY / "index.json")
     for precision in REFERENCE_PRECISIONS:
@@ -236,6 +238,19 @@ def coulomb_examples_job() -> JobOutput:
     from ..studies.coulomb_examples import examples
 
     return JobOutput(examples())
+
+
+def _tippe_files() -> list:
+    from models.bodies import DIRECTORY
+
+    return sorted(DIRECTORY.glob("tippe-top*.toml"))
+
+
+def tippe_top_job() -> JobOutput:
+    """The tippe top under the smooth law and exact Coulomb friction (:mod:`verify.studies.tippe`, ~80 s)."""
+    from ..studies.tippe.report import job_data
+
+    return JobOutput(job_data())
 
 
 def friction_slip_job(law: str) -> JobOutput:

@@ -140,6 +140,10 @@ def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] 
 
         out += guarded("Bodies of revolution", lambda: _split_h2("\n".join(
             render_bodies(studies["bodies"], studies["reference"]["index"]))))
+    if studies.get("tippe_top") is not None:  # absent from a results.json made before the section
+        from ..studies.tippe.report import render_markdown as render_tippe
+
+        out += guarded("Tippe top", lambda: _split_h2(render_tippe(studies["tippe_top"])))
     from .engines import render_markdown as render_engines
 
     out += _split_h2("\n".join(render_engines(engines)))
