@@ -144,10 +144,17 @@ def straight_line_angles(model, params: Optional[dict] = None) -> list:
 
 def is_spin_line(model, theta_s, params: Optional[dict] = None) -> bool:
     """Whether alpha vanishes at the straight-line angle ``theta_s`` too: then theta0 = theta_s is steady with
-    psidot = 0 at every phidot (the diameter spin of a body symmetric about its mid-plane)."""
+    psidot = 0 at every phidot (the diameter spin of a body symmetric about its mid-plane).  Exactly for a
+    sympy root; for an mpmath one, to 1e-30 of alpha's size over the domain."""
     subs = parameter_values(model, params)
-    value = sp.simplify(row1(model).alpha.subs(theta, theta_s).subs(subs))
-    return value == 0
+    alpha = row1(model).alpha.subs(subs)
+    if not isinstance(theta_s, mpmath.mpf):
+        return sp.simplify(alpha.subs(theta, theta_s)) == 0
+    f = sp.lambdify(theta, alpha, "mpmath")
+    with mpmath.workdps(DPS):
+        lo, hi = domain(model, subs)
+        size = max(abs(f(lo + (hi - lo) * mpmath.mpf(i) / 7)) for i in range(1, 7))
+        return abs(f(theta_s)) < mpmath.mpf(10) ** -30 * size
 
 
 def sleeping_ends(model, params: Optional[dict] = None) -> list:

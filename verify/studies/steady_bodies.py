@@ -94,6 +94,7 @@ class Form:
     q12: sp.Expr
     q22: sp.Expr
     l: sp.Expr
+    s: sp.Expr  # c e + d f: with the rates kept, a tilt moves the body to a member displaced by -s tilt / w2
 
 
 def _model(model):
@@ -118,7 +119,7 @@ def stability_form(model) -> Form:
     q11, q22 = (sp.diff(w2, x, 2).subs(zero) / 2 for x in (phidot, psidot))
     q12 = sp.diff(w2, phidot, psidot).subs(zero)
     l_ = sp.diff(w2, g).subs(zero)
-    form = Form(w2, q11, q12, q22, l_)
+    form = Form(w2, q11, q12, q22, l_, c * e + d * f)
     subs = parameter_values(model)
     names = (theta, phidot, psidot, g)
     lhs = sp.lambdify(names, w2.subs(subs), "mpmath")
@@ -148,11 +149,21 @@ def _side(coefficient, constant) -> tuple:
     return None, "every rate" if positive else "no rate"
 
 
-def _closed_line(model, motion, theta_s, subs, shown) -> Record:
-    """A line theta0 = theta_s (straight line: rate psidot; diameter spin: rate phidot), closed form."""
+def _line(model, motion, theta_s, value_s, subs, shown) -> Record:
+    """A line theta0 = theta_s (straight line: rate psidot; diameter spin: rate phidot): a closed form where
+    theta_s has one (``theta_s`` a sympy root), else the numbers at ``value_s`` (mpmath, 45 digits)."""
     form = stability_form(model)
     rate = "psidot0" if motion == "straight-line" else "phidot0"
     q = form.q22 if motion == "straight-line" else form.q11
+    with mpmath.workdps(DPS):
+        if theta_s is None:
+            q_s, l_s = (sp.lambdify(theta, e.subs(subs), "mpmath")(value_s) for e in (q, form.l * g))
+            value, stable = _side(q_s, l_s)
+            th = mpmath.nstr(value_s, DIGITS)
+            return Record(model.name, motion, f"theta0 = {th} at every rate", th, None, rate,
+                          None if value is None else mpmath.nstr(mpmath.sqrt(value), DIGITS), stable, None,
+                          f"linearisation of the model's equations at theta0 = {th}, the root of delta by mpmath "
+                          f"(no closed form): {rate}^2 = -g l/q at 45 digits", shown)
     at = {theta: theta_s}
     crit2 = sp.simplify((-g * form.l / q).subs(at))
     with mpmath.workdps(DPS):
@@ -302,12 +313,10 @@ def thresholds(model, params: Optional[dict] = None) -> list:
     shown = _shown(model, subs)
     values = {p.name: subs[p.symbol] for p in model.parameters}
     out = []
-    for exact, _ in straight_line_angles(model, values):
-        if exact is None:
-            raise NotImplementedError(f"{model.name}: a straight-line angle without a closed form (not built yet)")
-        out.append(_closed_line(model, "straight-line", exact, subs, shown))
-        if is_spin_line(model, exact, values):
-            out.append(_closed_line(model, "diameter-spin", exact, subs, shown))
+    for exact, value in straight_line_angles(model, values):
+        out.append(_line(model, "straight-line", exact, value, subs, shown))
+        if is_spin_line(model, exact if exact is not None else value, values):
+            out.append(_line(model, "diameter-spin", exact, value, subs, shown))
     out.extend(_branch_records(model, subs, shown))
     for end in sleeping_ends(model, values):
         out.append(_sleeping(model, end, subs, shown))
