@@ -2,8 +2,9 @@
 
 A steady motion has thetadot = 0 and constant rates.  In the equations the suite derives for every body
 (:func:`models.rolling.derive`, paper Eqs. 5-8 and 73) phiddot and psiddot carry a factor thetadot (the two
-rows without thetaddot, which give Chaplygin's linear integrals, paper Eqs. 9-10) and thetaddot is even in
-thetadot, so thetadot = 0 with any theta0, phidot, psidot is steady exactly where row 1 vanishes:
+rows without thetaddot, which give Chaplygin's linear integrals; the paper's Eqs. 17-18, 50 and 80-81 show
+it for its bodies) and thetaddot is even in thetadot, so thetadot = 0 with any theta0, phidot, psidot is
+steady exactly where row 1 vanishes (the ring's Eq. 57 is this):
 
     alpha(theta0) phidot^2 + beta(theta0) phidot psidot + delta(theta0) g = 0        (row 1 at thetadot = 0)
 
@@ -12,14 +13,14 @@ couple) and delta proportional to r2 cos(theta) - r3 sin(theta), the slope of th
 checked on the model's own expressions (:func:`row1`), not assumed.  The motions:
 
 * the family: theta0 and phidot != 0 given, psidot = -(alpha phidot^2 + delta g)/(beta phidot)
-  (the paper's Eqs. 42-44 for the disk, 59-60 for the ring and 70-72 for the hurricane balls are members);
+  (the paper's Eqs. 42-45 for the disk, 55-58 for the ring and 70-72 for the hurricane balls are members);
 * ``straight-line``, phidot = 0 and any psidot: at a root theta_s of delta inside the domain, where r_P is
-  vertical -- the disk upright, the ring at cot^-1 h (paper Eq. 31 and after Eq. 57), the rounded coin
+  vertical -- the disk upright, the ring at cot^-1 h (paper Eqs. 30-32; after Eq. 61), the rounded coin
   and the ellipsoids on their equator;
 * ``diameter-spin``, psidot = 0: omega = phidot Z, the body turns about the vertical through the contact
-  point (paper Eqs. 38-41, 62).  Either a branch phidot^2 = -g delta(theta0)/alpha(theta0) (the ring's
+  point (paper Eqs. 34-41, 62).  Either a branch phidot^2 = -g delta(theta0)/alpha(theta0) (the ring's
   Eq. 62) or, where alpha vanishes with delta (a body symmetric about its mid-plane, upright), the line
-  theta0 = theta_s at every rate (the disk's Eq. 38);
+  theta0 = theta_s at every rate (the disk's, Eqs. 34-41);
 * ``sleeping``: theta0 = 0 or pi, at an end of the domain where delta vanishes (the contact on the axis:
   the spheres, the ellipsoids), any omega3.  Euler angles are singular there; theta0 = pi is theta0 = 0
   of the body turned over (:func:`turned_over`).
