@@ -293,3 +293,21 @@ def test_without_sympys_roots_the_numeric_route_gives_the_same_thresholds(monkey
             assert abs(mpmath.mpf(rec.theta0) - mpmath.mpf(closed[key].theta0)) < mpmath.mpf(10) ** -28
             if key[1] == "straight-line" or key[0] == "body:disk":
                 assert rec.closed_form is None and rec.theta0_exact is None and "no closed form" in rec.method
+
+
+def test_the_disks_family_at_the_upright_is_its_diameter_spin_with_eq_41():
+    """At theta0 = pi/2 row 1 gives psidot = 0 for every phidot (alpha and delta vanish there), so the family
+    is the diameter spin and its one critical rate is Eq. 41's 28 s^-1, unstable below and stable above; at
+    theta0 = 1.2 the family (the disk circling) is read from the same quadratic and w2 agrees directly."""
+    model = get_model("body:disk")
+    with mpmath.workdps(40):
+        up = family(model, mpmath.pi / 2)
+        assert len(up.critical) == 1 and mpmath.nstr(mpmath.mpf(up.critical[0]), 15) == "28.0"
+        assert up.stable_at == (False, True)
+        tilted = family(model, "1.2")
+        for rate in ("3", "17", "40"):
+            s = steady_state(model, "family", rate, "1.2")
+            direct = stability_coefficient(model, s)
+            p4, p2, p0 = (mpmath.mpf(x) for x in (tilted.p4, tilted.p2, tilted.p0))
+            w = mpmath.mpf(rate)
+            assert abs((p4 * w**4 + p2 * w**2 + p0) / w**2 - direct) < mpmath.mpf(10) ** -25 * (1 + abs(direct))
