@@ -249,7 +249,8 @@ def sleeping_coefficients(model) -> tuple:
     not assumed.  u ~ exp(i s t) gives s^2 - B s + A = 0: the sleeping state is stable
     (both s real) when B^2 - 4 A > 0.
     """
-    eps, a, b = sp.symbols("epsilon a b", positive=True)
+    # Dummies: a body's own parameter may be called a (the ellipsoid's semi-axis) and would be taken for these
+    eps, a, b = (sp.Dummy(n, positive=True) for n in ("epsilon", "a", "b"))
     spin = {psidot: OMEGA3 - phidot * sp.cos(theta)}
     small = {theta: eps * a, thetadot: eps * b}
     F1, F2, F3 = [e.subs(spin) for e in model.accelerations]
