@@ -5,9 +5,9 @@ from functools import lru_cache
 
 import sympy as sp
 
-from models.symbols import (
-    phi, psi, theta,
-    time_derivative,
+from models.symbols import (  # noqa: F401 -- the symbols and frames are re-exported to the claim modules
+    omega_body, omega_body_dot, omega_frame, phi, phidot, phiddot, psi, psidot, psiddot, theta,
+    thetadot, thetaddot, time_derivative, to_inertial, vertical_in_frame,
 )
 
 E1, E2, E3 = sp.Matrix([1, 0, 0]), sp.Matrix([0, 1, 0]), sp.Matrix([0, 0, 1])
