@@ -216,7 +216,7 @@ def test_closed_stdout_and_stderr_are_no_traceback():
 
 def test_ctrl_c_during_a_long_run_exits_130_with_one_line():
     p = subprocess.Popen([sys.executable, "-m", "verify", "trajectory", "disk", "--state", "theta=1.2", "--state",
-                          "psidot=10", "--t-end", "1e6"],
+                          "psidot=10", "--t-end", "1e6", "--progress"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=ENV, cwd=ROOT)
     try:
         first = p.stderr.readline()  # the first progress line: the run is under way

@@ -67,7 +67,7 @@ def registry() -> list:
     jobs += [Job(f"retrograde/{m}", "retrograde_job", (m,), ("verify.studies.retrograde", "verify.report.retrograde"))
              for m in MECHANISMS]
     jobs += friction_jobs()
-    jobs.append(Job("bodies", "verify.studies.bodies:rows_job", (), ("verify.studies.bodies",),
+    jobs.append(Job("bodies", "bodies_job", (), ("verify.studies.bodies",),
                     tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
     jobs.append(Job("tippe-top", "tippe_top_job", (), ("verify.studies.tippe.report",),
                     tuple(str(p) for p in _tippe_files())))
@@ -244,6 +244,12 @@ def _tippe_files() -> list:
     from models.bodies import DIRECTORY
 
     return sorted(DIRECTORY.glob("tippe-top*.toml"))
+
+
+def bodies_job() -> JobOutput:
+    from ..studies.bodies import rows
+
+    return JobOutput(rows())
 
 
 def tippe_top_job() -> JobOutput:

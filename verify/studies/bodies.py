@@ -43,13 +43,6 @@ def rows() -> list:
     return out
 
 
-def rows_job():
-    """The report's job (:mod:`verify.report.jobs`): the rows as its data."""
-    from ..report.jobs import JobOutput
-
-    return JobOutput(rows())
-
-
 def default_run(model, body) -> dict:
     """A 1-s double run from the body's default start (:func:`models.bodies.default_start`): outcome, steps, each
     invariant's drift / (eps x term scale)."""
@@ -89,4 +82,4 @@ def paper_identity(name: str, model) -> dict:
             "start": start}
 
 
-__all__ = ["PAPER_BODIES", "default_run", "paper_identity", "rows", "rows_job"]
+__all__ = ["PAPER_BODIES", "default_run", "paper_identity", "rows"]
