@@ -112,11 +112,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, beside this file
 
-from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
-from verify.frames import QUATERNION_FORM, euler_to_b  # noqa: E402
-from verify.reference.store import DIRECTORY  # noqa: E402
+from verify.frames import QUATERNION_FORM  # noqa: E402
+import friction_cases  # noqa: E402
 
 #: What a new user gets: MultibodyPlantConfig() and Simulator() untouched (time_step 1e-3,
 #: 'lagged' SAP, hydroelastic_with_fallback -> point contact for these geometries, stiffness
@@ -144,7 +144,16 @@ SWEEP = [({}, -0.19, 0.00, 5.2e-1, 1.1),
 
 
 def load_case(case: str) -> dict:
-    return json.loads((DIRECTORY / f"{case}.json").read_text())
+    """The case's record (:func:`friction_cases.load_case`: with ``friction`` and ``velocity``)."""
+    return friction_cases.load_case(case)
+
+
+def with_friction(s: dict, record: dict) -> dict:
+    """The setting for this case: a Coulomb case's mu as static and dynamic coefficient of both geometries
+    (Drake combines two surfaces' coefficients as 2 mu1 mu2 / (mu1 + mu2): mu and mu give mu), and its
+    output every 2^-10 s (to resolve the slip phase and the stick)."""
+    mu = friction_cases.friction_of(record)
+    return s if mu is None else {**s, "mu": mu, "output_dt": min(s["output_dt"], 2.0 ** -10)}
 
 
 def start_tolerance(record: dict, setting: dict) -> float:
@@ -171,9 +180,8 @@ def body_of(record: dict) -> dict:
 
 
 def start_of(record: dict, body: dict) -> dict:
-    """The case's start in form (b) (verify.frames.euler_to_b), as floats."""
-    state = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
-    return {c: float(v[0]) for c, v in euler_to_b(body["model"], state, body["params"]).items()}
+    """The case's start in form (b) (verify.frames.euler_to_b), as floats; a skid's CM velocity where given."""
+    return friction_cases.start_b(record, body["model"], body["params"])
 
 
 def build(body: dict, s: dict):
@@ -307,6 +315,7 @@ def run_case(case: str, setting="default", t_end: float | None = None, out: str 
     record = load_case(case)
     name = setting if isinstance(setting, str) else "custom"
     s = dict(SETTINGS[setting]) if isinstance(setting, str) else {**DEFAULT, **setting}
+    s = with_friction(s, record)
     t_end = float(record["t_end"]) if t_end is None else min(float(t_end), float(record["t_end"]))
     rec = {"engine": "Drake", "version": version(), "case": case, "setting": name, "parameters": s, "t_end": t_end}
     t0 = time.perf_counter()
@@ -317,6 +326,9 @@ def run_case(case: str, setting="default", t_end: float | None = None, out: str 
         return rec
     rec["wall_s"] = round(time.perf_counter() - t0, 3)
     rec["outcome"] = outcome_of(cols, body_of(record))
+    rec["_columns"] = cols  # not JSON: the run itself
+    if friction_cases.friction_of(record) is not None:  # where the run slides and sticks, beside the reference's switches
+        rec["friction"] = friction_cases.friction_record(cols, record)
     if out:
         write_csv(cols, out)
     try:

@@ -107,11 +107,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, beside this file
 
-from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
-from verify.frames import MATRIX, MATRIX_ENTRIES, euler_to_b  # noqa: E402
-from verify.reference.store import DIRECTORY  # noqa: E402
+from verify.frames import MATRIX, MATRIX_ENTRIES  # noqa: E402
+import friction_cases  # noqa: E402
 
 #: What a new user gets (SimulationSettings() untouched but for endTime): generalized-alpha with
 #: spectral radius 0.9 (numerical damping), the default 100 steps per default endTime 1, i.e. dt = 0.01,
@@ -124,10 +124,22 @@ DEFAULT = {"dt": 0.01, "solver": "GeneralizedAlpha", "spectralRadius": 0.9, "ind
 BEST = dict(DEFAULT, dt=2.0 ** -18, spectralRadius=1.0, nodeType="RotationRxyz", modifiedNewton=False,
             newtonRelTol=1e-12, newtonAbsTol=1e-14, output="grid")
 SETTINGS = {"default": DEFAULT, "best": BEST}
+#: A Coulomb case (coin-coulomb-*) runs on the penalty connector ObjectConnectorRollingDiscPenalty (the ideal
+#: joint cannot slip).  Its contact stiffness and damping have no usable default (0: no contact at all):
+#: "default" takes the values of the example in the docstring of MainSystem.CreateRollingDiscPenalty
+#: (contactStiffness 1e5, contactDamping 2e3), the connector's own defaults otherwise (dryFrictionProportionalZone
+#: 0: unregularised Coulomb friction resolved by the discontinuous iteration, the quadratic zone), and
+#: SimulationSettings() as DEFAULT.
+COULOMB_DEFAULT = dict(DEFAULT, contactStiffness=1e5, contactDamping=2e3, proportionalZone=0.0, linearZone=False)
+#: The best of the Coulomb sweep in the module's docstring.
+COULOMB_BEST = dict(COULOMB_DEFAULT, dt=2.0 ** -21, spectralRadius=0.9, contactStiffness=1e8, contactDamping=2e4,
+                    proportionalZone=1e-4, linearZone=True, modifiedNewton=False, output=2.0 ** -10)
+COULOMB_SETTINGS = {"default": COULOMB_DEFAULT, "best": COULOMB_BEST}
 
 
 def load_case(case: str) -> dict:
-    return json.loads((DIRECTORY / f"{case}.json").read_text())
+    """The case's record (:func:`friction_cases.load_case`: with ``friction`` and ``velocity``)."""
+    return friction_cases.load_case(case)
 
 
 def body_of(record: dict) -> dict:
@@ -142,16 +154,16 @@ def body_of(record: dict) -> dict:
 
 
 def start_b(record: dict, body: dict) -> dict:
-    """The case's start in form (b) (floats), from the suite's own tested conversion."""
-    start = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
-    return {c: float(v[0]) for c, v in euler_to_b(body["model"], start, body["params"]).items()}
+    """The case's start in form (b) (floats), from the suite's own tested conversion; a skid's CM velocity
+    where the case gives one."""
+    return friction_cases.start_b(record, body["model"], body["params"])
 
 
 def build(record: dict, setting: dict):
     """(mbs, body, sensors, b0): the system assembled with the case's start."""
     import exudyn as exu
-    from exudyn.utilities import (MarkerBodyRigid, ObjectGround, ObjectJointRollingDisc, RigidBodyInertia,
-                                  SensorBody)
+    from exudyn.utilities import (MarkerBodyRigid, NodeGenericData, ObjectConnectorRollingDiscPenalty, ObjectGround,
+                                  ObjectJointRollingDisc, RigidBodyInertia, SensorBody)
 
     body = body_of(record)
     b0 = start_b(record, body)
@@ -167,8 +179,16 @@ def build(record: dict, setting: dict):
     mGround = mbs.AddMarker(MarkerBodyRigid(bodyNumber=mbs.AddObject(ObjectGround())))
     # the disc's centre is the marker: C for the disk, C - h e3 (the rim plane) for the coin
     mDisc = mbs.AddMarker(MarkerBodyRigid(bodyNumber=oBody, localPosition=[0, 0, -body["h"]]))
-    mbs.AddObject(ObjectJointRollingDisc(markerNumbers=[mGround, mDisc], constrainedAxes=[1, 1, 1],
-                                         discRadius=1.0, discAxis=[0, 0, 1], planeNormal=[0, 0, 1]))
+    mu = friction_cases.friction_of(record)
+    if mu is None:  # rolling without slipping: the ideal joint
+        mbs.AddObject(ObjectJointRollingDisc(markerNumbers=[mGround, mDisc], constrainedAxes=[1, 1, 1],
+                                             discRadius=1.0, discAxis=[0, 0, 1], planeNormal=[0, 0, 1]))
+    else:  # Coulomb: the penalty connector, its friction f_t = mu phi(|v_t|, v_mu) f_n e_t (both axes mu: isotropic)
+        nData = mbs.AddNode(NodeGenericData(initialCoordinates=[0, 0, 0], numberOfDataCoordinates=3))
+        mbs.AddObject(ObjectConnectorRollingDiscPenalty(
+            markerNumbers=[mGround, mDisc], nodeNumber=nData, discRadius=1.0, discAxis=[0, 0, 1], planeNormal=[0, 0, 1],
+            contactStiffness=setting["contactStiffness"], contactDamping=setting["contactDamping"], dryFriction=[mu, mu],
+            dryFrictionProportionalZone=setting["proportionalZone"], useLinearProportionalZone=setting["linearZone"]))
     kinds = {"p": exu.OutputVariableType.Position, "v": exu.OutputVariableType.Velocity,
              "w": exu.OutputVariableType.AngularVelocity, "R": exu.OutputVariableType.RotationMatrix}
     sensors = {k: mbs.AddSensor(SensorBody(bodyNumber=oBody, storeInternal=True, writeToFile=False,
@@ -247,10 +267,12 @@ def run_columns(record: dict, setting: dict, t_end: float) -> tuple:
     return run, wall, err0, ok
 
 
-def resolve(setting) -> tuple:
+def resolve(setting, record: dict | None = None) -> tuple:
+    """(name, setting dict): a Coulomb case's from COULOMB_SETTINGS (a dict overrides COULOMB_DEFAULT's keys)."""
+    table = COULOMB_SETTINGS if record is not None and friction_cases.friction_of(record) is not None else SETTINGS
     if isinstance(setting, dict):
-        return "custom", dict(DEFAULT, **setting)
-    return setting, dict(SETTINGS[setting])
+        return "custom", dict(table["default"], **setting)
+    return setting, dict(table[setting])
 
 
 def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
@@ -259,7 +281,7 @@ def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
     import exudyn as exu
 
     record = load_case(case)
-    name, st = resolve(setting)
+    name, st = resolve(setting, record)
     t_end = float(record["t_end"]) if t_end is None else float(t_end)
     result = {"engine": "Exudyn", "version": exu.__version__, "case": case, "setting": name, "parameters": st,
               "t_end": t_end, "wall_s": None, "score": None, "outcome": None}
@@ -280,6 +302,8 @@ def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
         result["outcome"] = "fell" if np.any(theta >= math.pi / 2) else "ok"
     if out:
         write_csv(run, out)
+    if friction_cases.friction_of(record) is not None:  # where the run slides and sticks, beside the reference's switches
+        result["friction"] = friction_cases.friction_record(run, record)
     try:
         sc = score(run, case)
         result["score"] = sc.to_record()

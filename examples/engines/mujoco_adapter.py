@@ -79,11 +79,12 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, beside this file
 
 from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
-from verify.frames import QUATERNION_FORM, b_to_euler, euler_to_b  # noqa: E402
-from verify.reference.store import DIRECTORY  # noqa: E402
+from verify.frames import QUATERNION_FORM, b_to_euler  # noqa: E402
+import friction_cases  # noqa: E402
 
 #: MuJoCo's own defaults (option and geom), as a new user gets them: only what describes the body is set.
 DEFAULT = {"dt": 0.002, "integrator": "Euler", "solver": "Newton", "cone": "pyramidal", "iterations": 100,
@@ -112,7 +113,15 @@ OUTPUT_EVERY = 1e-3  # s, about
 
 
 def case_record(case: str) -> dict:
-    return json.loads((DIRECTORY / f"{case}.json").read_text())
+    """The case's record (:func:`friction_cases.load_case`: with ``friction`` and ``velocity``)."""
+    return friction_cases.load_case(case)
+
+
+def with_friction(s: dict, record: dict) -> dict:
+    """The setting for this case: a Coulomb case's mu on both geoms (MuJoCo takes the element-wise maximum
+    of the two geoms' friction: the same mu on both is mu), torsional and rolling 0 (unused at condim 3)."""
+    mu = friction_cases.friction_of(record)
+    return s if mu is None else dict(s, friction=f"{mu!r} 0 0")
 
 
 def body_of(record: dict, half_height: float) -> dict:
@@ -191,8 +200,7 @@ def simulate(record: dict, s: dict, t_end: float) -> tuple:
     body = body_of(record, s["half_height"])
     m = mujoco.MjModel.from_xml_string(mjcf(body, s))
     d = mujoco.MjData(m)
-    start = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
-    b0 = {c: float(v[0]) for c, v in euler_to_b(body["model"], start, body["params"]).items()}
+    b0 = friction_cases.start_b(record, body["model"], body["params"])  # a skid's CM velocity where given
     set_start(mujoco, m, d, b0)
     back = read_state(mujoco, m, d)
     check = check_start(back, b0, record)
@@ -240,6 +248,7 @@ def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
     (the case's by default), score it and return a JSON-ready record; ``out`` writes the run's CSV."""
     record = case_record(case)
     name, s = resolve(setting)
+    s = with_friction(s, record)
     t_end = float(record["t_end"]) if t_end is None else float(t_end)
     result = {"engine": "MuJoCo", "version": None, "case": case, "setting": name, "parameters": s, "t_end": t_end}
     t0 = time.perf_counter()
@@ -252,6 +261,9 @@ def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
                   outcome=outcome)
     if out is not None:
         write_csv(cols, out)
+    result["_columns"] = cols  # not JSON: the run itself
+    if friction_cases.friction_of(record) is not None:  # where the run slides and sticks, beside the reference's switches
+        result["friction"] = friction_cases.friction_record(cols, record)
     try:
         sc = score(cols, case, start_tolerance=start_tolerance(record, s))
     except Exception as err:  # noqa: BLE001

@@ -83,11 +83,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, beside this file
 
-from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
-from verify.frames import MOTION, QUATERNION, euler_to_b  # noqa: E402
-from verify.reference.store import DIRECTORY  # noqa: E402
+from verify.frames import MOTION, QUATERNION  # noqa: E402
+import friction_cases  # noqa: E402
 
 COLUMNS = ("t",) + QUATERNION + MOTION
 
@@ -106,7 +106,16 @@ FLAT = 0.1
 
 
 def load_case(case: str) -> dict:
-    return json.loads((DIRECTORY / f"{case}.json").read_text())
+    """The case's record (:func:`friction_cases.load_case`: with ``friction`` and ``velocity``)."""
+    return friction_cases.load_case(case)
+
+
+def lateral_friction(record: dict, setting: dict) -> tuple:
+    """(the body's, the plane's) lateralFriction.  Bullet multiplies the two
+    (``btManifoldResult::calculateCombinedFriction``: mu = mu_body mu_plane, clamped to [-10, 10]), so a
+    Coulomb case gets mu on the body and 1 on the plane; a rolling case the setting's value on both."""
+    mu = friction_cases.friction_of(record)
+    return (setting["friction"], setting["friction"]) if mu is None else (mu, 1.0)
 
 
 def body_geometry(record: dict, setting: dict) -> dict:
@@ -159,14 +168,14 @@ def setup(record: dict, setting: dict):
     import pybullet as p
 
     geo = _with_override(body_geometry(record, setting), setting)
-    start = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
     # the start in form (b) for the model actually simulated: for the disk, the cylinder of
     # half-height h touches at -e2 - h e3, i.e. the ring model with that h and the disk's inertia
     if geo["model"] == "disk" and geo["h"] > 0:
         model_b, params_b = "ring", {"I1": geo["I1"], "I3": geo["I3"], "h": geo["h"], "g": geo["g"]}
     else:
         model_b, params_b = geo["model"], geo["params"]
-    b0 = {c: float(v[0]) for c, v in euler_to_b(model_b, start, params_b).items()}
+    b0 = friction_cases.start_b(record, model_b, params_b)  # a skid's CM velocity where the case gives one
+    mu_body, mu_plane = lateral_friction(record, setting)
     cid = p.connect(p.DIRECT)
     p.setGravity(0, 0, -geo["g"], physicsClientId=cid)
     phys = {"fixedTimeStep": setting["dt"]}
@@ -185,15 +194,17 @@ def setup(record: dict, setting: dict):
     body = p.createMultiBody(1.0, shape, basePosition=(b0["x"], b0["y"], b0["z"]), baseOrientation=orn,
                              useMaximalCoordinates=bool(setting.get("maximal", False)), physicsClientId=cid)
     dyn = {"mass": 1.0, "localInertiaDiagonal": (geo["I1"], geo["I1"], geo["I3"]),
-           "lateralFriction": setting["friction"]}
+           "lateralFriction": mu_body}
     for key, name in (("damping", "linearDamping"), ("damping", "angularDamping"),
                       ("restitution", "restitution"), ("rolling_friction", "rollingFriction"),
                       ("spinning_friction", "spinningFriction"), ("margin", "collisionMargin"),
                       ("contact_stiffness", "contactStiffness"), ("contact_damping", "contactDamping")):
         if key in setting:
             dyn[name] = setting[key]
+    if friction_cases.friction_of(record) is not None:  # Coulomb: no torsional or rolling friction (0 by default: said, not assumed)
+        dyn.update(spinningFriction=0.0, rollingFriction=0.0)
     p.changeDynamics(body, -1, physicsClientId=cid, **dyn)
-    p.changeDynamics(plane, -1, lateralFriction=setting["friction"], physicsClientId=cid,
+    p.changeDynamics(plane, -1, lateralFriction=mu_plane, physicsClientId=cid,
                      **({"restitution": setting["restitution"]} if "restitution" in setting else {}))
     p.resetBaseVelocity(body, (b0["vx"], b0["vy"], b0["vz"]), (b0["wx"], b0["wy"], b0["wz"]), physicsClientId=cid)
     return p, cid, body, geo, b0
@@ -231,7 +242,8 @@ def simulate(record: dict, setting: dict, t_end: float):
     p, cid, body, geo, b0 = setup(record, setting)
     try:
         got0 = check_start(p, cid, body, b0)
-        steps = output_steps(record, setting["dt"], t_end)
+        # a Coulomb case every 2^-10 s (1/32 of its grid spacing), to resolve the slip phase and the stick
+        steps = output_steps(record, setting["dt"], t_end, 32 if friction_cases.friction_of(record) is not None else 8)
         rows, n_done, outcome = [], 0, "ok"
         t0 = time.perf_counter()
         for t, n in steps:
@@ -257,23 +269,29 @@ def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
     record = load_case(case)
     t_end = float(record["t_end"]) if t_end is None else float(t_end)
     cols, wall, outcome, geo = simulate(record, cfg, t_end)
+    if outcome == "ok":
+        theta = np.arctan2(np.hypot(*_e3xy(cols)), _e3z(cols))
+        # theta is the tilt of e3 from the vertical: pi/2 upright, 0 lying flat; C below the plane: sunk
+        if np.any(theta < FLAT) or np.any(cols["z"] < -1e-3):
+            outcome = "fell"
+    friction = friction_cases.friction_record(cols, record)  # None for a rolling case
     sc = None
     try:
         sc = score(cols, case, start_tolerance=start_tolerance(geo))
         rec_score = sc.to_record()
     except Exception as exc:  # noqa: BLE001 - reported, not hidden
         rec_score, outcome = None, f"error: {type(exc).__name__}: {exc}"
-    if outcome == "ok" and sc is not None:
-        theta = np.arctan2(np.hypot(*_e3xy(cols)), _e3z(cols))
-        # theta is the tilt of e3 from the vertical: pi/2 upright, 0 lying flat; C below the plane: sunk
-        if np.any(theta < FLAT) or np.any(cols["z"] < -1e-3):
-            outcome = "fell"
     if out:
         write_csv(cols, out)
-    return {"engine": "PyBullet", "version": _version(pybullet), "case": case, "setting": name,
-            "parameters": {**cfg, "cylinder_half_height": geo["h"], "inertia": [geo["I1"], geo["I1"], geo["I3"]]},
-            "t_end": t_end, "wall_s": round(wall, 3), "score": rec_score, "outcome": outcome,
-            "_score": sc, "_columns": cols}
+    mu_body, mu_plane = lateral_friction(record, cfg)
+    rec = {"engine": "PyBullet", "version": _version(pybullet), "case": case, "setting": name,
+           "parameters": {**cfg, "cylinder_half_height": geo["h"], "inertia": [geo["I1"], geo["I1"], geo["I3"]],
+                          "lateral_friction": {"body": mu_body, "plane": mu_plane, "combined": mu_body * mu_plane}},
+           "t_end": t_end, "wall_s": round(wall, 3), "score": rec_score, "outcome": outcome,
+           "_score": sc, "_columns": cols}
+    if friction is not None:
+        rec["friction"] = friction
+    return rec
 
 
 def _e3xy(c):
