@@ -256,6 +256,7 @@ def solve(
     velocity=None,
     precision="double",
     n_eval: int = 101,
+    t_eval=None,
 ) -> HybridSolution:
     """Integrate ``disk+coulomb`` or ``ring+coulomb`` from time 0 to ``t_end``.
 
@@ -274,6 +275,9 @@ def solve(
     precision : {"double", "long", "quad", "mp:BITS"}
     n_eval : int
         Equally spaced output times from 0 to t_end (plus the switch times).
+    t_eval : sequence, optional
+        The output times instead (plus the switch times): increasing, from 0 to t_end, each read at
+        ``precision`` (decimal strings exactly as written).
 
     Raises
     ------
@@ -304,10 +308,16 @@ def solve(
         raise InvalidStart(problem[2], problem[1])
     c = compiled(name, prec)
     par_vector = prec.array([pars[p.name] for p in rolling.parameters] + [mu])
-    n = int(n_eval) - 1
-    if n < 1:
-        raise ValueError(f"n_eval={n_eval} must be at least 2")
-    grid = [t_end * prec.number(i) / prec.number(n) for i in range(n)] + [t_end]
+    if t_eval is not None:
+        grid = [prec.number(v) for v in t_eval]
+        if len(grid) < 2 or grid[0] != 0 or grid[-1] != t_end or any(not b > a for a, b in zip(grid, grid[1:])):
+            raise ValueError(f"t_eval must increase from 0 to t_end = {float(t_end):.9g} (at least 2 times); "
+                             f"got {len(grid)} times from {float(grid[0]) if grid else None!r}")
+    else:
+        n = int(n_eval) - 1
+        if n < 1:
+            raise ValueError(f"n_eval={n_eval} must be at least 2")
+        grid = [t_end * prec.number(i) / prec.number(n) for i in range(n)] + [t_end]
 
     run = _Run(name, prec, c, pars, par_vector, mu, grid, t_end)
     if velocity is None:
@@ -597,12 +607,12 @@ class _Run:
     def rolling(self, t0, y8):
         prec = self.prec
         rolling = _rolling(self.name)
-        after = self._grid_after(t0)
+        after = [g for g in self._grid_after(t0) if g - t0 > 0]
         relative = [g - t0 for g in after]
         self.phases.append(Phase("rolling", t0, None, "running"))
         try:
             sol = solve_rolling(rolling, self.t_end - t0, y8, self.pars, precision=prec,
-                                t_eval=[prec.zero()] + [r for r in relative if r > 0], friction=self.mu)
+                                t_eval=[prec.zero()] + relative, friction=self.mu)
         except InvalidStart as err:
             if err.reason == "slips":
                 self.phases.pop()
@@ -615,7 +625,10 @@ class _Run:
         self.rolling_runs.append(sol)
         self.steps += int(sol.steps)
         states = [np.array(sol.y[:, j]) for j in range(sol.y.shape[1])]
-        times = [t0 + tau for tau in sol.t]
+        # a grid output is reported at the grid's own time: t0 + (g - t0) need not round back to g (it is g to
+        # an ulp, and the state was integrated to it); the event that ends the phase is at t0 + its own time
+        times = [t0] + [after[k] if k < len(relative) and tau == relative[k] else t0 + tau
+                        for k, tau in enumerate(sol.t[1:])]
         values = _evaluate(self.c.rolling_function, np.ascontiguousarray(sol.y), self.par_vector[:-1])
         nan = np.longdouble("nan") if prec.name == "long" else float("nan")
         self._record("rolling", times, states, values[0], _term_scale(values, 4), [prec.zero()] * len(times),

@@ -91,14 +91,21 @@ def check_case(record: dict, precision: str = "double", params: Optional[dict] =
     prec = parse_precision(precision)
     name = record["name"]
     model = record["model"]["name"]
-    if record["model"]["equations_sha256"] != equations_fingerprint(model):
+    hybrid = "friction" in record
+    if record["model"]["equations_sha256"] != equations_fingerprint(record["friction"]["model"] if hybrid else model):
         return CaseCheck(name, prec.name, 0, math.inf, "-", math.nan, math.nan, 0.0, False,
                          "stale: the model's equations changed since the reference was made "
                          "(equations_sha256 differs); run 'python -m verify reference --make'")
     values = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}
     values.update(params or {})
     grid = record["grid"]
-    sol = solve(model, record["t_end"], record["initial_state"], values, precision=prec, t_eval=grid)
+    if hybrid:
+        sol, message = _hybrid_run(record, values, prec)
+        if message:
+            return CaseCheck(name, prec.name, sol.steps, math.inf, f"t = {float(sol.t[-1]):.6g}", math.nan, math.nan,
+                             0.0, False, message)
+    else:
+        sol = solve(model, record["t_end"], record["initial_state"], values, precision=prec, t_eval=grid)
     if sol.outcome != "ok" or len(sol.t) != len(grid):
         return CaseCheck(name, prec.name, sol.steps, math.inf, f"t = {float(sol.t[-1]):.6g}", math.nan, math.nan, 0.0,
                          False, f"the run stopped early: {sol.outcome}")
@@ -125,6 +132,38 @@ def check_case(record: dict, precision: str = "double", params: Optional[dict] =
     ok = ratio <= 1.0 and (proof_ratio is None or proof_ratio <= 1.0)
     return CaseCheck(name, prec.name, sol.steps, ratio, where, error, bound, share, ok,
                      proof_ratio=proof_ratio, proof_where=proof_where)
+
+
+@dataclass(frozen=True)
+class _GridRun:
+    """A hybrid run's outputs at the case's grid times only (the shape the check reads)."""
+
+    t: list
+    y: object  # (8, grid) array
+    steps: int
+    outcome: str
+
+
+def _hybrid_run(record: dict, values: dict, prec):
+    """The Coulomb case re-run by the hybrid at ``prec``: (its grid outputs, '' or why it fails).
+
+    A run that switches differently from the reference (another sequence of rolling and sliding) fails
+    by name: its values would be compared with another motion's."""
+    from ..engine.hybrid import solve as solve_hybrid
+    from .coulomb_runs import grid_rows, switch_kinds
+
+    friction = record["friction"]
+    params = {k: v for k, v in values.items() if k != "mu"}
+    sol = solve_hybrid(friction["model"], record["t_end"], record["initial_state"], params,
+                       friction=values.get("mu", friction["mu"]), velocity=friction["initial_velocity_xy"],
+                       precision=prec, t_eval=record["grid"])
+    kinds = switch_kinds(sol)
+    if sol.outcome == "ok" and kinds != record["switches"]["kinds"]:
+        return sol, f"the run switches differently from the reference ({kinds} against {record['switches']['kinds']})"
+    if sol.outcome != "ok":
+        return sol, f"the run stopped early: {sol.outcome}"
+    rows = grid_rows(sol, record["grid"], prec)
+    return _GridRun([sol.t[j] for j in rows], sol.y[:, rows], sol.steps, sol.outcome), ""
 
 
 def _against_proofs(record, proofs, sol, prec, root_n, r_star, scale):

@@ -48,6 +48,8 @@ def form_b_columns(record: dict) -> dict:
         for j in range(len(record["grid"])):
             state = {n: mpmath.mpf(record["state"][n]["value"][j]) for n in STATE_NAMES}
             b = euler_to_b(model, state, params, module="mpmath")
+            if "friction" in record:  # C's own velocity: the no-slip one of euler_to_b plus the slip
+                b["vx"], b["vy"] = (mpmath.mpf(record["columns"][c]["value"][j]) for c in ("velocity_x", "velocity_y"))
             for c in B_COLUMNS[1:]:
                 cols[c].append(_decimal(b[c]))
     return cols
@@ -87,7 +89,9 @@ def case_setup(record: dict) -> dict:
             "model": record["model"]["name"], "title": record["model"]["title"], "t_end": record["t_end"],
             "initial_state": record["initial_state"],
             "parameters": {k: {"exact": v["exact"], "decimal": v["decimal"], "description": v["description"]}
-                           for k, v in record["model"]["parameters"].items()}}
+                           for k, v in record["model"]["parameters"].items()},
+            **({"friction": {**record["friction"], "switches": [{"kind": k, "t": t} for k, t in zip(
+                record["switches"]["kinds"], record["switches"]["times"]["value"])]}} if "friction" in record else {})}
 
 
 def export_set(directory: Path, fmt: str, source: Path = DIRECTORY) -> list:

@@ -47,8 +47,14 @@ class Run:
 
 
 def run_case(name: str, precision: str) -> Run:
-    """Integrate case ``name`` at ``precision`` on its grid (derived equations); raise unless it reaches t_end."""
+    """Integrate case ``name`` at ``precision`` on its grid (derived equations); raise unless it reaches t_end.
+
+    A Coulomb case is the hybrid's run (:func:`verify.reference.coulomb_runs.run_case`, a ``HybridRun``)."""
     c = case(name)
+    if c.hybrid:
+        from .coulomb_runs import run_case as run_hybrid
+
+        return run_hybrid(c, precision)
     p = parse_precision(precision)
     sol = solve(c.model, c.t_end, c.state, c.exact_params, precision=p, t_eval=c.grid())
     if sol.outcome != "ok" or len(sol.t) != c.intervals + 1:
@@ -81,13 +87,18 @@ def equations_fingerprint(model_name: str) -> str:
 
     Accelerations, the velocity of C, every closed-form invariant and the normal force: a
     fingerprint of the equations as functions, independent of how sympy writes them.  A
-    reference file whose fingerprint differs from the current model's is stale.
+    reference file whose fingerprint differs from the current model's is stale.  For a body with
+    Coulomb friction (``ring+coulomb``) the rolling model's fingerprint is followed by the sliding
+    phase's right-hand sides, energy and N/(Mg) at the same states with a slip s = 1/2, direction 1/3,
+    work 0 and mu = 1/2.
     """
     return _fingerprint(model_name)
 
 
 @lru_cache(maxsize=None)
 def _fingerprint(model_name: str) -> str:
+    if model_name.endswith("+coulomb"):
+        return _coulomb_fingerprint(model_name)
     model = get_model(model_name)
     exprs = list(model.accelerations) + list(model.velocity_xy) + [i.expr for i in model.invariants]
     if model.normal_force is not None:
@@ -104,8 +115,28 @@ def _fingerprint(model_name: str) -> str:
     return h.hexdigest()
 
 
+def _coulomb_fingerprint(model_name: str) -> str:
+    from models import coulomb
+
+    rolling, sliding, params = coulomb.body(model_name)
+    exprs = list(sliding.rhs) + [sliding.energy, sliding.normal_force]
+    f = sp.lambdify(list(coulomb.SLIDING_STATE) + [p.symbol for p in params], exprs, "mpmath")
+    h = hashlib.sha256(_fingerprint(rolling.name).encode())
+    with mpmath.workdps(50):
+        pars = [mpmath.mpf(sp.N(p.default, 60)) for p in params[:-1]] + [mpmath.mpf(1) / 2]
+        for st in FINGERPRINT_STATES:
+            values = [mpmath.mpf(st.get(n, "0")) for n in STATE_NAMES] + [mpmath.mpf(1) / 2, mpmath.mpf(1) / 3, 0]
+            for v in f(*values, *pars):
+                h.update(mpmath.nstr(mpmath.mpf(v), 40).encode() + b";")
+    return h.hexdigest()
+
+
 def conditioning(c: ReferenceCase) -> dict:
     """Row sums of |Phi(t, 0)| and the parameter terms on the grid (t > 0), per component."""
+    if c.hybrid:
+        from .coulomb_runs import conditioning as hybrid_conditioning
+
+        return hybrid_conditioning(c)
     times = [float(t) for t in c.grid()[1:]]
     R, P = sensitivities(c.model, times, c.state, c.exact_params)
     fmt = lambda x: float(f"{x:.3e}")  # noqa: E731 -- magnitudes: 4 digits are plenty, and stable

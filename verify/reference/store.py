@@ -61,7 +61,7 @@ def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits:
         params[p.name] = {"exact": str(exact), "decimal": str(sp.N(exact, 40)), "description": p.description}
     state = agreed_columns(low.state, high.state, low_bits, high_bits)
     invariants = agreed_columns(low.invariants, high.invariants, low_bits, high_bits)
-    return {
+    record = {
         "format": FORMAT,
         "name": c.name,
         "description": c.description,
@@ -86,6 +86,33 @@ def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits:
         "invariants": invariants,
         "conditioning": conditioning(c),
         "provenance": {"versions": versions(), "source_commit": source_commit()["commit"]},
+    }
+    if c.hybrid:
+        record.update(coulomb_blocks(c, low, high, low_bits, high_bits))
+        record["model"]["equations_sha256"] = equations_fingerprint(c.run_model)
+    return record
+
+
+def coulomb_blocks(c: ReferenceCase, low, high, low_bits: int, high_bits: int) -> dict:
+    """The keys a Coulomb case adds: ``friction`` (the law, mu, the start's CM velocity), ``phases`` (rolling
+    or sliding at each grid time) and ``switches`` (their kinds, and their times agreed like any value)."""
+    from .coulomb_runs import check_same_switches
+
+    check_same_switches(low, high)
+    times = agreed_columns({"t": low.switch_times}, {"t": high.switch_times}, low_bits, high_bits)["t"]
+    return {
+        "friction": {"law": "Coulomb, static = kinetic: |F_h| <= mu N while rolling, F_h = -mu N u/|u| while "
+                            "sliding (u the contact point's slip velocity)",
+                     "mu": c.friction, "model": c.run_model,
+                     "initial_velocity_xy": list(c.velocity) if c.velocity else None,
+                     "initial_velocity_is": "the centre of mass's (v_x, v_y) at t = 0: the contact slides from the start"
+                                            if c.velocity else "null: the start rolls (v_C the no-slip velocity)",
+                     "invariants_are": "E + W (E the energy, W = int mu N s dt the work done by friction): conserved",
+                     "columns_are": "energy E, work W, slip speed s = |u| (0 while rolling), velocity_x and velocity_y "
+                                    "the centre of mass's horizontal velocity (the no-slip one plus the slip u)"},
+        "columns": agreed_columns(low.columns, high.columns, low_bits, high_bits),
+        "phases": high.phases,
+        "switches": {"kinds": high.switch_kinds, "times": times},
     }
 
 
@@ -136,7 +163,9 @@ def index_record(records: list) -> dict:
     entries = []
     for r in records:
         s = final_summary(r)
-        entries.append({"name": r["name"], "file": f"{r['name']}.json", "model": r["model"]["name"], "kind": r["kind"],
+        friction = r.get("friction")
+        entries.append({"name": r["name"], "file": f"{r['name']}.json",
+                        "model": friction["model"] if friction else r["model"]["name"], "kind": r["kind"],
                         "source": r["source"], "t_end": r["t_end"], "grid_points": len(r["grid"]),
                         "steps": r["precisions"]["steps"], "min_certified_digits_final": s["min_digits_final"],
                         "median_certified_digits_final": s["median_digits_final"],
@@ -144,6 +173,10 @@ def index_record(records: list) -> dict:
                         "weakest_component": s["weakest_component"],
                         "predicted_digits_weakest": s["predicted_digits_weakest"],
                         "max_row_sum_final": s["max_row_sum_final"],
+                        **({"mu": friction["mu"], "switches": [
+                            {"kind": k, "t": t, "digits": d} for k, t, d in zip(
+                                r["switches"]["kinds"], r["switches"]["times"]["value"],
+                                r["switches"]["times"]["digits"])]} if friction else {}),
                         "sha256": hashlib.sha256(dumps(r).encode()).hexdigest()})
     used = {(r["precisions"]["low"], r["precisions"]["high"]) for r in records}
     low, high = sorted(used)[0] if len(used) == 1 else (LOW, HIGH)

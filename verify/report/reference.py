@@ -34,6 +34,15 @@ def render_markdown(index: dict, checks: dict, proved=None) -> list:
                      f"| {e['steps'][index['precisions']['low']]} | {e['min_certified_digits_final']} "
                      f"({e['weakest_component']}) | {e['predicted_digits_weakest']} "
                      f"| {e['median_certified_digits_final']} | {e['max_row_sum_final']:.3g} |")
+    coulomb = [e for e in index["cases"] if "switches" in e]
+    if coulomb:
+        lines += ["", "The Coulomb cases (a coin that rolls and slides, mu = static = kinetic) are runs of the event-driven "
+                  "hybrid (verify/engine/hybrid.py) at the same two precisions; their switch times are agreed like any "
+                  "value, and their conditioning is measured by central differences of whole quad runs (the variational "
+                  "equations know nothing of the switches). They are agreed, not proved: "
+                  + "; ".join(f"{e['name']} (mu = {e['mu']}): "
+                              + ", ".join(f"{w['kind']} at t = {w['t'][:14]}... ({w['digits']} digits)"
+                                          for w in e["switches"]) for e in coulomb) + "."]
     short = [e["min_certified_digits_final"] for e in index["cases"] if float(e["t_end"]) <= 10]
     long_ = [(e["name"], e["min_certified_digits_final"], e["max_row_sum_final"]) for e in index["cases"]
              if float(e["t_end"]) >= 100]

@@ -93,6 +93,13 @@ class Score:
         The fewest digits of any component at any time; ``worst`` names where.
     energy_rel_drift : float
         max |E(t) - E(t0)| / |E(t0)| of the run's own states (E from the model's expression, in double).
+        For a Coulomb case this is the share of the energy friction took (and the run's own errors), not a drift.
+    energy_rel_error, slip_speed_error, slip_speed_max : float or None
+        Coulomb cases: max |E_run(t) - E_ref(t)| / |E_ref(0)|, with E_run from the run's own velocity, height and
+        angular velocity; max | |u_run(t)| - s_ref(t) | of the contact point's slip speed (length unit per second);
+        and the reference's largest slip speed at the run's times, for scale.  None for the other cases.
+    switches : tuple
+        Coulomb cases: the reference's switches, (kind, time) ('sliding -> rolling', ...).
     contact_height, contact_velocity : float or None
         max |z of the contact point| (length unit) and max |velocity the constraint sets to 0|
         (length unit per second) along the run; None for form (a), which holds them by construction.
@@ -118,6 +125,10 @@ class Score:
     verdict: str = field(default="")
     t_end: float = math.nan  # the case's end time
     start_tolerance: float = START_TOLERANCE
+    energy_rel_error: Optional[float] = None  # Coulomb cases: max |E_run(t) - E_ref(t)| / |E_ref(0)|
+    slip_speed_error: Optional[float] = None  # Coulomb cases: max | |u_run(t)| - s_ref(t) | (length unit / s)
+    slip_speed_max: Optional[float] = None  # Coulomb cases: the reference's largest slip speed over the run's times
+    switches: tuple = ()  # Coulomb cases: the reference's (kind, time) of each switch
 
     @property
     def partial(self) -> bool:
@@ -148,6 +159,9 @@ class Score:
                 "energy_rel_drift": num(self.energy_rel_drift), "contact_height": num(self.contact_height),
                 "contact_velocity": num(self.contact_velocity), "rotation_defect": num(self.rotation_defect),
                 "t_end_case": self.t_end, "partial": self.partial, "start_tolerance": self.start_tolerance,
+                **({"energy_rel_error": num(self.energy_rel_error), "slip_speed_error": num(self.slip_speed_error),
+                    "slip_speed_max": num(self.slip_speed_max),
+                    "switches": [{"kind": k, "t": t} for k, t in self.switches]} if self.switches else {}),
                 "verdict": self.verdict}
 
     def table(self) -> str:
@@ -157,12 +171,19 @@ class Score:
         for c in self.components.values():
             lines.append(f"{c.name:<10} {c.min_digits:>10.2f} {c.t_min:>10.4g} {c.median_digits:>7.2f} "
                          f"{c.final_digits:>7.2f}  {c.scale:.4g} ({c.scale_is})")
-        lines.append(f"energy drift max |E - E(t0)| / |E(t0)|: {self.energy_rel_drift:.2e}")
+        if self.switches:
+            lines.append("the reference switches: " + ", ".join(f"{k} at t = {t:.6g}" for k, t in self.switches))
+            lines.append(f"energy error max |E - E_ref| / |E_ref(0)|: {self.energy_rel_error:.2e} (the run's own E lost "
+                         f"{self.energy_rel_drift:.2e} of E(0) to friction and error); slip speed error max: "
+                         f"{self.slip_speed_error:.2e} (the reference's slip reaches {self.slip_speed_max:.3g})")
+        else:
+            lines.append(f"energy drift max |E - E(t0)| / |E(t0)|: {self.energy_rel_drift:.2e}")
         if self.contact_height is None:
             lines.append("constraints: held by construction in form (a) (not measurable)")
         else:
             lines.append(f"contact height max |z_P|: {self.contact_height:.2e}; contact velocity max: "
-                         f"{self.contact_velocity:.2e}; rotation defect: {self.rotation_defect:.2e}")
+                         f"{self.contact_velocity:.2e}{' (the slip, where it slides)' if self.switches else ''}; "
+                         f"rotation defect: {self.rotation_defect:.2e}")
         lines.append(self.verdict)
         return "\n".join(lines)
 
@@ -202,7 +223,12 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
     if t[-1] > float(record["t_end"]):
         raise InvalidRun(f"the run goes to t = {float(t[-1])!r}, beyond case {case}'s t_end = {record['t_end']}")
     params = {k: float(v["decimal"]) for k, v in record["model"]["parameters"].items()}
+    friction = record.get("friction")
     R = w = None
+    if friction and form == "euler":
+        raise InvalidRun(f"case {case} rolls and slides with Coulomb friction: give the run in form (b) (rotation "
+                         "matrix or quaternion with C's position and velocity and omega): the Euler angles do not "
+                         "hold the centre of mass's velocity, which sets the slip")
     if form == "euler":
         state = {n: columns[n] for n in STATE_NAMES}
     else:
@@ -211,7 +237,7 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
                              f"case {case} is a {model} run: give it in form euler")
         state, R, w = b_to_euler(columns)
 
-    ref, source = _reference(record, t)
+    ref, source, extra = _reference(record, t)
     case_states = _case_states(record)
     scales = _scales(case_states)
     own = _own_scales(case_states, scales)
@@ -222,9 +248,19 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
         if not defect_t[0] <= start_tolerance:
             raise InvalidRun(f"the orientation at t = 0 is not a rotation (defect {defect_t[0]:.1e}: a reflection, "
                              f"a left-handed frame, unnormalised entries, or R and q that disagree)")
-        for what, value, scale in (("height of the contact point", height_t[0], 1.0),
-                                   ("velocity of the contact point", speed_t[0], scales["phidot"][0])):
-            if not abs(value) <= start_tolerance * scale:
+        starts = [("height of the contact point", height_t[0], 0.0, 1.0)]
+        skid = bool(friction and friction["initial_velocity_xy"])  # C's velocity is the case's, the contact slides
+        if skid:
+            starts += [(f"{c} of the centre of mass", float(columns[c][0]), float(v), scales["phidot"][0])
+                       for c, v in zip(("vx", "vy"), friction["initial_velocity_xy"])]
+        else:
+            starts.append(("velocity of the contact point", speed_t[0], 0.0, scales["phidot"][0]))
+        for what, value, wanted, scale in starts:
+            if not abs(value - wanted) <= start_tolerance * scale:
+                if what.endswith("centre of mass"):
+                    raise InvalidRun(f"the start does not match case {case}: {what} {value!r} at t = 0, the case's "
+                                     f"{wanted!r} (off by more than {start_tolerance:g} x {scale:.4g}; the contact "
+                                     f"slides from the start)")
                 raise InvalidRun(f"a constraint is violated at t = 0: {what} {value:.3e}, more than {start_tolerance:g} "
                                  f"x {scale:.4g} (the frame must have Z up, the plane at z = 0 and C's position and "
                                  f"velocity; see verify.frames)")
@@ -251,9 +287,16 @@ def score(run, case: str, *, directory: Path = DIRECTORY, start_tolerance: float
         energy = own_energy(model, columns, R, w, params)
     energy = np.broadcast_to(energy, t.shape)
     drift = float(np.max(np.abs(energy - energy[0])) / abs(energy[0]))
+    coulomb = {}
+    if friction:
+        coulomb = {"energy_rel_error": float(np.max(np.abs(energy - extra["energy"])) / abs(extra["energy"][0])),
+                   "slip_speed_error": float(np.max(np.abs(speed_t - extra["slip_speed"]))),
+                   "slip_speed_max": float(np.max(extra["slip_speed"])),
+                   "switches": tuple((k, float(v)) for k, v in zip(record["switches"]["kinds"],
+                                                                   record["switches"]["times"]["value"]))}
     result = Score(case, model, form, t, source, digits, components, worst.min_digits,
                    f"{worst.name} at t = {worst.t_min:g}", drift, height, speed, defect, t_end=float(record["t_end"]),
-                   start_tolerance=start_tolerance)
+                   start_tolerance=start_tolerance, **coulomb)
     return _with_verdict(result)
 
 
@@ -276,14 +319,18 @@ def _with_verdict(s: Score) -> Score:
     from dataclasses import replace
 
     constraints = ("constraints held by construction (form euler)" if s.contact_height is None else
+                   f"contact height {s.contact_height:.1e}" if s.switches else  # the contact's velocity is its slip
                    f"contact height {s.contact_height:.1e}, contact velocity {s.contact_velocity:.1e}")
     shown = f">= {DIGITS_RESOLVED:.2f} (a double's resolution)" if s.min_digits >= DIGITS_RESOLVED else f"{s.min_digits:.1f}"
     cover = (f"PARTIAL: only t in [{s.t[0]:g}, {s.t[-1]:g}] of the case's [0, {s.t_end:g}]" if s.partial
              else f"over the whole case, t in [{s.t[0]:g}, {s.t[-1]:g}]")
     start = (f"start within {s.start_tolerance:g} of each component's scale"
              + ("" if s.start_tolerance == START_TOLERANCE else f" (loosened by request from {START_TOLERANCE:g})"))
+    energy = (f"energy error {s.energy_rel_error:.1e} of E(0) against the reference's, slip speed error "
+              f"{s.slip_speed_error:.1e} (reference slip up to {s.slip_speed_max:.3g})" if s.switches
+              else f"energy drift {s.energy_rel_drift:.1e}")
     line = (f"verdict: agrees with {s.case} to {shown} digits {cover} (fewest: {s.worst}); "
-            f"energy drift {s.energy_rel_drift:.1e}; {constraints}; {start}")
+            f"{energy}; {constraints}; {start}")
     return replace(s, verdict=line)
 
 
@@ -343,9 +390,12 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
     import mpmath
 
     index = {float(s): j for j, s in enumerate(record["grid"])}
+    hybrid = "friction" in record
+    extra_names = ("energy", "slip_speed") if hybrid else ()
     if all(float(v) in index for v in t):
         rows = [index[float(v)] for v in t]
         exact = {n: [record["state"][n]["value"][j] for j in rows] for n in STATE_NAMES}
+        exact.update({n: [record["columns"][n]["value"][j] for j in rows] for n in extra_names})
         source = "stored grid"
     else:
         try:  # the quad re-integration needs the full suite; a light install (numpy, mpmath) scores grid times only
@@ -362,10 +412,17 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
         quad = parse_precision("quad")
         params = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}
         times = [exact_decimal(float(v)) for v in t]
-        sol = solve(record["model"]["name"], times[-1], record["initial_state"], params, precision=quad, t_eval=times)
-        if sol.outcome != "ok" or len(sol.t) != len(t):
+        if hybrid:
+            sol, rows = _hybrid_reference(record, params, times, quad)
+        else:
+            sol = solve(record["model"]["name"], times[-1], record["initial_state"], params, precision=quad, t_eval=times)
+            rows = range(len(sol.t))
+        if sol.outcome != "ok" or len(rows) != len(t):
             raise RuntimeError(f"the quad re-integration of {record['name']} stopped early: {sol.outcome}")
-        exact = {n: [quad.to_mpf(v) for v in sol.y[i]] for i, n in enumerate(STATE_NAMES)}
+        exact = {n: [quad.to_mpf(sol.y[i][j]) for j in rows] for i, n in enumerate(STATE_NAMES)}
+        if hybrid:
+            exact["energy"] = [quad.to_mpf(sol.energy[j]) for j in rows]
+            exact["slip_speed"] = [quad.to_mpf(sol.slip_speed[j]) for j in rows]
         source = "quad re-integration"
     out = {}
     with mpmath.workdps(40):
@@ -375,5 +432,23 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
             if n in WRAPPED:
                 values = [v - turn * mpmath.nint(v / turn) for v in values]
             out[n] = np.array([float(v) for v in values])
-    return out, source
+        extra = {n: np.array([float(mpmath.mpf(v)) for v in exact[n]]) for n in extra_names}
+    return out, source, extra
+
+
+def _hybrid_reference(record: dict, params: dict, times: list, quad):
+    """A Coulomb case re-run by the hybrid in quad at ``times``: (the run, the index of each time's output).
+
+    A run that switches differently from the stored reference is not its motion: that raises."""
+    from ..engine.hybrid import solve as solve_hybrid
+    from ..reference.coulomb_runs import grid_rows, switch_kinds
+
+    friction = record["friction"]
+    sol = solve_hybrid(friction["model"], times[-1], record["initial_state"], params, friction=friction["mu"],
+                       velocity=friction["initial_velocity_xy"], precision=quad, t_eval=times)
+    kinds = switch_kinds(sol)
+    if sol.outcome != "ok" or kinds != record["switches"]["kinds"][:len(kinds)]:
+        raise RuntimeError(f"the quad re-integration of {record['name']} does not switch as the reference "
+                           f"({kinds} against {record['switches']['kinds']}; {sol.outcome})")
+    return sol, grid_rows(sol, times, quad)
 
