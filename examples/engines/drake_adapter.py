@@ -130,6 +130,9 @@ DEFAULT = {"time_step": 1e-3, "discrete_contact_approximation": "lagged",
 BEST = {**DEFAULT, "time_step": 0.0, "integrator": "runge_kutta3", "accuracy": 1e-4, "point_stiffness": 1e9,
         "dissipation": 0.0, "stiction_tolerance": 1e-3, "mu": 1.0}
 SETTINGS = {"default": DEFAULT, "best": BEST}
+#: A Coulomb case (coin-coulomb-*): the same defaults; its best is BEST with a tighter stiction tolerance (3e-4:
+#: the slip phase and the rolling after it are set by it), from the Coulomb sweep in the docstring.
+COULOMB_SETTINGS = {"default": DEFAULT, "best": {**BEST, "stiction_tolerance": 3e-4}}
 #: The sweep on disk-standard-1 to t = 1 s (the docstring's table): (changes from DEFAULT, min digits,
 #: final digits, energy drift, wall s).  None: the run sank through the plane ('fell').
 _C = {"time_step": 0.0, "integrator": "runge_kutta3", "accuracy": 1e-4, "dissipation": 0.0}
@@ -314,7 +317,8 @@ def run_case(case: str, setting="default", t_end: float | None = None, out: str 
     """Run ``case`` in Drake at ``setting`` ('default', 'best' or a dict over DEFAULT), score it."""
     record = load_case(case)
     name = setting if isinstance(setting, str) else "custom"
-    s = dict(SETTINGS[setting]) if isinstance(setting, str) else {**DEFAULT, **setting}
+    table = COULOMB_SETTINGS if friction_cases.friction_of(record) is not None else SETTINGS
+    s = dict(table[setting]) if isinstance(setting, str) else {**table["default"], **setting}
     s = with_friction(s, record)
     t_end = float(record["t_end"]) if t_end is None else min(float(t_end), float(record["t_end"]))
     rec = {"engine": "Drake", "version": version(), "case": case, "setting": name, "parameters": s, "t_end": t_end}
@@ -358,7 +362,8 @@ def main() -> None:
     args = ap.parse_args()
     setting = args.setting
     if args.set:
-        setting = {**SETTINGS[args.setting], **{k: json.loads(v) for k, v in (a.split("=", 1) for a in args.set)}}
+        table = COULOMB_SETTINGS if friction_cases.friction_of(load_case(args.case)) is not None else SETTINGS
+        setting = {**table[args.setting], **{k: json.loads(v) for k, v in (a.split("=", 1) for a in args.set)}}
     rec = run_case(args.case, setting, args.t_end, args.out)
     print(f"Drake {rec['version']}, {rec['case']}, setting {rec['setting']}: outcome {rec['outcome']}, "
           f"wall {rec['wall_s']} s")

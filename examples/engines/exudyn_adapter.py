@@ -133,7 +133,7 @@ SETTINGS = {"default": DEFAULT, "best": BEST}
 COULOMB_DEFAULT = dict(DEFAULT, contactStiffness=1e5, contactDamping=2e3, proportionalZone=0.0, linearZone=False)
 #: The best of the Coulomb sweep in the module's docstring.
 COULOMB_BEST = dict(COULOMB_DEFAULT, dt=2.0 ** -21, spectralRadius=0.9, contactStiffness=1e8, contactDamping=2e4,
-                    proportionalZone=1e-4, linearZone=True, modifiedNewton=False, output=2.0 ** -10)
+                    proportionalZone=1e-5, linearZone=True, modifiedNewton=False, output=2.0 ** -10)
 COULOMB_SETTINGS = {"default": COULOMB_DEFAULT, "best": COULOMB_BEST}
 
 

@@ -18,7 +18,7 @@ at t = 0, a skid).
   u = v_C + omega x r_P along a run in form (b) (r_P = -e2 - h e3, the coin's rim edge; the
   scorer's own geometry, :mod:`verify.scoring.geometry`), and where the run slides: every interval
   where |u| exceeds :data:`SLIP_THRESHOLD`, its end taken as the stick.
-* :func:`reference_switches` -- where the reference slips and sticks (the stored file's switch times
+* :func:`reference_switches` -- where the reference slips and sticks (the reference file's switch times
   when it has them, else this suite's hybrid run of the case in double).
 
 Why a threshold of 0.1 R/s.  Every engine here regularises friction or softens the contact, so a
@@ -30,7 +30,7 @@ threshold then moves a stick time by at most 0.1/260 = 0.4 ms, below the engines
 the output spacing of their default settings.  The onset of slip from rolling is slow (s grows like
 sigma t^2 / 2 from mu_req = mu), so the threshold shows the slip's start late by about 1.4 ms on
 slip-1: the reference's own crossing times at the same threshold (``reference_switches(...,
-threshold=...)``) compare like with like.
+threshold=...)``: 0.0793 and 0.0964 on slip-1, 0.0761 on the skid) compare like with like.
 """
 from __future__ import annotations
 
@@ -202,32 +202,37 @@ def _hybrid_run(name: str, n_eval: int):
                  precision="double", n_eval=n_eval)
 
 
-def reference_switches(name: str, threshold: float | None = None) -> dict:
-    """Where case ``name``'s reference slips and sticks: ``{'phases': ['rolling', 'sliding', ...],
-    'switch_times': [...], 'slips_at', 'sticks_at', 'source'}`` (the first slip from rolling after t = 0 and
-    the first stick; None where there is none).
+def reference_switches(record: dict, threshold: float | None = None) -> dict:
+    """Where the reference of a Coulomb case slips and sticks: ``{'phases': ['rolling', 'sliding', ...],
+    'n_slides', 'switch_times': [...], 'slips_at', 'sticks_at', 'source'}`` (the first slip from rolling after
+    t = 0 and the first stick; None where there is none).
 
-    From this suite's hybrid run in double (:func:`verify.engine.hybrid.solve`; its switch times are
-    located by heyoka's event finder to about 1e-16 s and agree with the quad runs of the reference far
-    beyond the digits kept here).  With ``threshold``, also where the reference's own slip speed crosses
-    it (``slips_at_threshold``, ``sticks_at_threshold``, on 2^12 outputs plus the switch times): the times
-    an engine's run is measured by.
+    From the reference file's ``switches`` (the hybrid runs' event-located switch times, agreed to 37 digits)
+    when the record has them, else from this suite's hybrid run of the case in double
+    (:func:`verify.engine.hybrid.solve`: the same times to about 1e-16 s).  With ``threshold``, also where the
+    reference's own slip speed crosses it (``slips_at_threshold``, ``sticks_at_threshold``; the hybrid in double
+    on 2^12 outputs plus the switch times, some seconds): the times an engine's run is measured by.
     """
-    sol = _hybrid_run(name, 33 if threshold is None else 4097)
-    kinds = [ph.kind for ph in sol.phases]
-    first_slip = next((float(ph.t_start) for ph in sol.phases[1:] if ph.kind == "sliding"), None)
-    first_stick = next((float(ph.t_end) for ph in sol.phases if ph.kind == "sliding" and ph.ended == "sticks"), None)
-    out = {"phases": kinds, "n_slides": kinds.count("sliding"),
-           "switch_times": [float(f"{float(x):.6g}") for x in sol.switch_times],
-           "slips_at": None if first_slip is None else float(f"{first_slip:.6g}"),
-           "sticks_at": None if first_stick is None else float(f"{first_stick:.6g}"),
-           "source": "verify.engine.hybrid.solve in double (event-located switches)"}
+    switches = record.get("switches")
+    if switches and threshold is None:
+        kinds = [switches["kinds"][0].split(" -> ")[0]] + [k.split(" -> ")[1] for k in switches["kinds"]]
+        times = [float(t) for t in switches["times"]["value"]]
+        source = "the reference file's switches (agreed event-located times)"
+    else:
+        sol = _hybrid_run(record["name"], 33 if threshold is None else 4097)
+        kinds = [ph.kind for ph in sol.phases]
+        times = [float(x) for x in sol.switch_times]
+        source = "verify.engine.hybrid.solve in double (event-located switches)"
+    first_slip = next((t for t, k in zip(times, kinds[1:]) if k == "sliding"), None)
+    first_stick = next((t for t, k, j in zip(times, kinds[1:], kinds) if k == "rolling" and j == "sliding"), None)
+    out = {"phases": kinds, "n_slides": kinds.count("sliding"), "switch_times": [_short(x) for x in times],
+           "slips_at": _short(first_slip), "sticks_at": _short(first_stick), "source": source}
     if threshold is not None:
         slides = slide_intervals([float(x) for x in sol.t], [float(x) for x in sol.slip_speed], threshold)
         if slides:
             a, b = slides[0]
-            out["slips_at_threshold"] = float(f"{a:.6g}") if a > 0 else None
-            out["sticks_at_threshold"] = None if b is None else float(f"{b:.6g}")
+            out["slips_at_threshold"] = _short(a) if a > 0 else None
+            out["sticks_at_threshold"] = _short(b)
     return out
 
 
@@ -238,7 +243,7 @@ def friction_record(columns: dict, record: dict) -> dict:
         return None
     run = slip_summary(columns, record)
     try:
-        ref = reference_switches(record["name"], SLIP_THRESHOLD)
+        ref = reference_switches(record)
         run["creep"] = creep(columns, record, ref)
     except Exception as err:  # noqa: BLE001 -- the run's own numbers stand without the reference's
         ref = {"error": f"{type(err).__name__}: {err}"}
