@@ -23,8 +23,10 @@ at t = 0, a skid).
 
 Why a threshold of 0.1 R/s.  Every engine here regularises friction or softens the contact, so a
 "rolling" contact creeps: at their best settings on the rolling cases the contact point's speed stays
-below 0.05 R/s (MuJoCo 0.044, Drake 0.017, PyBullet 7.6e-3, on disk-standard-1 to 1 s), far below the
-slip phases' speeds (up to 3.0 R/s on coin-coulomb-slip-1, 36 R/s at the start of the skid).  Near a
+below 0.05 R/s (MuJoCo 0.044, Drake 0.017, PyBullet 7.6e-3, on disk-standard-1 to 1 s), and on the Coulomb
+cases, where the reference rolls (10 ms or more from its switches: :func:`creep`), below 3.1e-3 R/s (all
+four engines at "best", both cases), far below the slip phases' speeds (up to 3.0 R/s on
+coin-coulomb-slip-1, 36 R/s at the start of the skid).  Near a
 stick the reference's slip speed falls linearly at 260 R/s^2 (skid) to 480 R/s^2 (slip-1): the
 threshold then moves a stick time by at most 0.1/260 = 0.4 ms, below the engines' own errors and
 the output spacing of their default settings.  The onset of slip from rolling is slow (s grows like
@@ -237,8 +239,9 @@ def reference_switches(record: dict, threshold: float | None = None) -> dict:
 
 
 def friction_record(columns: dict, record: dict) -> dict:
-    """The record's ``friction`` block for a Coulomb case: mu, the skid velocity, the run's slides and the
-    reference's switches (JSON-ready), or None for a rolling case."""
+    """The record's ``friction`` block for a Coulomb case (JSON-ready), or None for a rolling case: ``mu``,
+    ``velocity`` (the skid's), ``run`` (:func:`slip_summary` and its ``creep``, :func:`creep`) and
+    ``reference`` (:func:`reference_switches`)."""
     if friction_of(record) is None:
         return None
     run = slip_summary(columns, record)
