@@ -18,8 +18,10 @@ $(STAMP): pyproject.toml
 report: $(STAMP)
 	$(PY) -m verify report
 
-# The tests run on every core (pytest-xdist): about 6 minutes on 2 cores.
+# The lint (ruff: pyflakes and syntax rules, pyproject's [tool.ruff]), then the tests on every core
+# (pytest-xdist): about 6 minutes on 2 cores.
 test: $(STAMP)
+	$(PY) -m ruff check .
 	$(PY) -m pytest -q -n auto
 
 test-all: $(STAMP)

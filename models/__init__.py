@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import importlib
 
-from .catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES, DISSIPATIVE_NAMES, MODEL_NAMES, STATE_NAMES
+from .catalogue import ALIASES, ALL_NAMES, BODY_PREFIX, COULOMB_NAMES, DISSIPATIVE_NAMES, MODEL_NAMES, STATE_NAMES
 
 _EQUATIONS = {"disk": ("derived", "paper"), "ring": ("derived", "paper"), "hurricane": ("derived", "paper"),
               "sliding-disk": ("derived",), "gyroscope": ("derived", "paper"), "effective": ("derived",)}
@@ -49,12 +49,23 @@ def get_model(name: str, equations: str = "derived"):
     allowed = sources(name)
     if equations not in allowed:
         raise ValueError(f"equations={equations!r} for model {name!r}; allowed: {', '.join(allowed)}")
+    if name.startswith(BODY_PREFIX):  # a shipped body file (models/bodies/NAME.toml), derived once
+        from .bodies import load, model_of
+
+        return model_of(load(name[len(BODY_PREFIX):]))
     if name in _BUILDERS:
         return importlib.import_module(f".{_BUILDERS[name]}", __name__).model(equations)
     return _dissipative(name)
 
 
 def _check_name(name: str) -> None:
+    if name.startswith(BODY_PREFIX):
+        from .bodies import shipped
+
+        if name[len(BODY_PREFIX):] in shipped():
+            return
+        raise ValueError(f"unknown body {name!r}; shipped bodies: {', '.join(BODY_PREFIX + n for n in shipped())} "
+                         "(a body file of your own: --body FILE.toml, or models.bodies.load(path))")
     if name not in ALL_NAMES:
         hint = ""
         if name in ALIASES:
@@ -69,6 +80,10 @@ def __getattr__(attr: str):
         from .base import Model
 
         return Model
+    if attr in ("body_of_revolution", "load_body"):  # a body of revolution from its profile (models.bodies)
+        from . import bodies
+
+        return bodies.body_of_revolution if attr == "body_of_revolution" else bodies.load
     try:
         return importlib.import_module(f".{attr}", __name__)
     except ModuleNotFoundError:
@@ -76,4 +91,4 @@ def __getattr__(attr: str):
 
 
 __all__ = ["ALIASES", "ALL_NAMES", "COULOMB_NAMES", "DISSIPATIVE_NAMES", "Model", "MODEL_NAMES", "STATE_NAMES",
-           "get_model", "sources"]
+           "body_of_revolution", "get_model", "load_body", "sources"]

@@ -40,8 +40,8 @@ class ModelEntry:
 
     @property
     def length_unit(self) -> str:
-        """'R' (disk, ring) or 'a' (the hurricane balls' ball radius)."""
-        return "a" if self.inertia_unit.endswith("a^2") else "R"
+        """'R' (disk, ring), 'a' (the hurricane balls' ball radius) or 'L' (a body file's own scale)."""
+        return "a" if self.inertia_unit.endswith("a^2") else "L" if self.inertia_unit.endswith("L^2") else "R"
 
     @property
     def parameter_names(self) -> tuple:
@@ -173,4 +173,11 @@ def entry(name: str) -> ModelEntry:
     name = ALIASES.get(name, (name,))[0]
     if name in COULOMB_NAMES:
         name = name.split("+")[0]
+    if name.startswith(BODY_PREFIX):  # a body file's model (models.bodies): its units are the file's scale L
+        return ModelEntry(name, f"the body of {name[len(BODY_PREFIX):]}.toml", ("derived",), parameters=(),
+                          domain=(), invariants=(), inertia_unit="M L^2", normal_force=True, friction_required=True)
     return CATALOGUE[name]
+
+
+#: The name of a body file's model is this prefix and the file's ``name`` (models.bodies).
+BODY_PREFIX = "body:"

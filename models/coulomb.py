@@ -196,13 +196,26 @@ def critical_friction(name: str, params: dict | None = None, samples: int = 4096
     return float("inf") if peak == 0 else float(1 / peak)
 
 
+def rolling_name(name: str) -> str:
+    """The rolling model of a Coulomb body: ``disk``, ``ring``, or a shipped body ``body:NAME`` of ``body:NAME+coulomb``."""
+    if name in ROLLING:
+        return ROLLING[name]
+    if name.startswith("body:") and name.endswith("+coulomb"):
+        return name[:-len("+coulomb")]
+    raise ValueError(f"unknown model {name!r}; allowed: {', '.join(NAMES)}, or body:NAME+coulomb for a shipped body")
+
+
 def body(name: str):
-    """(rolling model, sliding phase, parameters incl. ``mu`` last) of ``disk+coulomb`` or ``ring+coulomb``."""
+    """(rolling model, sliding phase, parameters incl. ``mu`` last) of ``disk+coulomb``, ``ring+coulomb`` or a
+    shipped body file's ``body:NAME+coulomb`` (:mod:`models.bodies`: the same derivation with its contact vector)."""
     from . import disk, get_model, ring
 
-    if name not in NAMES:
-        raise ValueError(f"unknown model {name!r}; allowed: {', '.join(NAMES)}")
-    rolling = get_model(ROLLING[name])
+    rolling = get_model(rolling_name(name))
+    if name.startswith("body:"):
+        from .bodies import contact_vector, load
+
+        I1, I3, r2, r3 = contact_vector(load(rolling.name[len("body:"):]))
+        return rolling, derive_sliding(I1, I3, r2, r3), rolling.parameters + (FRICTION,)
     if name == "disk+coulomb":
         sliding = derive_sliding(disk.k, 2 * disk.k, disk.R2, disk.R3)
     else:

@@ -27,7 +27,7 @@ import sympy as sp
 
 from .symbols import (
     ACCELERATIONS, g, omega_body, omega_body_dot, omega_frame, phi, phidot, psidot,
-    theta, thetaddot, phiddot, psiddot, thetadot, time_derivative, to_inertial,
+    theta, thetadot, time_derivative, to_inertial,
     vertical_in_frame,
 )
 

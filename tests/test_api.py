@@ -54,7 +54,7 @@ def test_other_states_are_refused_naming_the_value_and_what_is_allowed(state, wo
     text = str(err.value)
     assert words in text, text
     if shape:  # what is allowed: a mapping, or the eight values in this order
-        assert err.value.reason == "shape" and f"allowed: a mapping" in text and ", ".join(STATE_NAMES) in text
+        assert err.value.reason == "shape" and "allowed: a mapping" in text and ", ".join(STATE_NAMES) in text
 
 
 def test_params_must_be_a_mapping():

@@ -6,7 +6,6 @@ import math
 
 import heyoka as hy
 import numpy as np
-import pytest
 
 from verify.engine import batch
 

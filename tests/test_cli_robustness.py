@@ -16,8 +16,7 @@ from dataclasses import replace
 import mpmath
 import pytest
 
-import verify.cli as cli
-from verify.cli import arguments, commands, output, progress
+from verify.cli import arguments, output, progress
 from verify.engine import single
 from verify.cli import main
 

@@ -21,7 +21,7 @@ import sympy as sp
 
 from models import get_model
 from models.steady import exact_parameters, steady_state
-from models.symbols import ACCELERATIONS, STATE, g, phi, phidot, psi, psidot, theta, thetadot, x, y
+from models.symbols import ACCELERATIONS, STATE, g, phi, phidot, psi, psidot, theta, thetadot
 from verify import solve
 from verify.cli import main
 from verify.engine import invariants

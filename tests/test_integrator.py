@@ -12,7 +12,7 @@ from models import get_model
 from models.lagrange import euler_lagrange
 from models.rolling import derive
 from models.symbols import (
-    g, omega_body, phi, phidot, phiddot, psi, psidot, psiddot, theta, thetadot, thetaddot,
+    g, phi, phidot, phiddot, psi, psidot, psiddot, theta, thetadot, thetaddot,
 )
 from verify import IntegrationError, Trajectory, solve
 from verify.standard import STANDARD_STATES

@@ -10,7 +10,6 @@ from __future__ import annotations
 import copy
 
 import heyoka as hy
-import numpy as np
 import pytest
 
 from models import get_model

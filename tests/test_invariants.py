@@ -134,7 +134,6 @@ def test_vectorised_term_scale_equals_the_per_column_one(name):
     factors from sin, cos, pow, sqrt, each correctly rounded or within 1 ulp in either library (glibc,
     or numpy's SIMD on AVX-512): the two sums differ by at most ~8 eps relative, 16 allowed.  Where
     numpy calls glibc (AVX2), they agree to the bit (float_power keeps libm's pow)."""
-    import numpy as np
     import sympy as sp
 
     from models.symbols import STATE

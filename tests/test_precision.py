@@ -5,7 +5,6 @@ import math
 
 import heyoka as hy
 import mpmath
-import numpy as np
 import pytest
 
 from models import MODEL_NAMES

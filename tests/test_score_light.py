@@ -17,7 +17,7 @@ from models import get_model
 from models.symbols import STATE, theta
 from verify.frames import (BODIES_ON_PLANE, contact_vector, euler_to_b, from_euler_expressions, quaternion,
                            rotation_matrix)
-from verify.scoring import InvalidRun, score
+from verify.scoring import score
 from verify.scoring import geometry
 from verify.scoring.casefiles import load_set
 

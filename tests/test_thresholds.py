@@ -15,7 +15,7 @@ import pytest
 import sympy as sp
 
 from models import get_model
-from models.symbols import STATE, phidot, psidot, theta, thetadot
+from models.symbols import phidot, psidot, theta, thetadot
 from verify.cli import main
 from verify.engine.single import solve
 from verify.studies.thresholds import threshold

@@ -154,7 +154,7 @@ def _check_eq16():
 
 def _check_fig1():
     frame, _, _ = euler_angles_omega()
-    e1, e2, e3 = frame[:, 0], frame[:, 1], frame[:, 2]
+    e1, e2 = frame[:, 0], frame[:, 1]
     horizontal = same(e1[2], 0)
     # P is the lowest point of the rim C + R (cos(b) e1 + sin(b) e2): height R sin(b) sin(theta), least at b = -pi/2
     b = sp.Symbol("b")

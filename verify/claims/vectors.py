@@ -6,8 +6,8 @@ from functools import lru_cache
 import sympy as sp
 
 from models.symbols import (
-    omega_body, omega_body_dot, omega_frame, phi, phidot, phiddot, psi, psidot, psiddot, theta,
-    thetadot, thetaddot, time_derivative, to_inertial, vertical_in_frame,
+    phi, psi, theta,
+    time_derivative,
 )
 
 E1, E2, E3 = sp.Matrix([1, 0, 0]), sp.Matrix([0, 1, 0]), sp.Matrix([0, 0, 1])

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from models.catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES, STATE_NAMES
 
-from ..guard import Session
+from ..guard import Session, isatty
 from .arguments import (N_EVAL_MAX, RunFailed, UsageError, _decimal, _positive, _positive_int, _precision, _shown,
                         _value_pairs)
 
@@ -42,6 +42,9 @@ def add_run_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--friction", default=None, metavar="MU",
                    help="a friction coefficient: rolling models stop at the event slips where the motion needs more; "
                         "disk+coulomb and ring+coulomb roll and slide with it")
+    p.add_argument("--body", default=None, metavar="FILE",
+                   help="a body of revolution from its profile, in place of a model: a TOML body file or a shipped "
+                        "body's name (rounded-coin, routh-sphere, prolate-ellipsoid, ...: models/bodies/)")
     p.add_argument("--velocity", default=None, metavar="VX,VY",
                    help="disk+coulomb, ring+coulomb: the centre of mass's horizontal velocity at t = 0 (default: rolling)")
 
@@ -61,6 +64,7 @@ class RunRequest:
     given: dict  # the options as typed (kept in the files' metadata)
     n_eval: int | None = None  # the start's own output grid (a figure's), unless --n-eval is given
     events: bool = True  # False only for a start its source ran without events (Fig. 12)
+    body: object = None  # the Model of --body FILE (models.bodies), in place of a model name
 
 
 def read_request(args) -> RunRequest:
@@ -72,6 +76,8 @@ def read_request(args) -> RunRequest:
     from .. import starts
 
     state, params = _value_pairs(args.state, "state"), _value_pairs(args.param, "param")
+    if getattr(args, "body", None) is not None:
+        return _body_request(args, state, params)
     typed = args.model
     if typed is not None and typed not in MODEL_CHOICES:
         raise UsageError(f"unknown model {typed!r}; allowed: {', '.join(MODEL_CHOICES)}")
@@ -131,6 +137,35 @@ def read_request(args) -> RunRequest:
              "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end, "friction": args.friction}
     return RunRequest(model, args.equations, values["params"], values["state"], str(t_end), friction, args.velocity,
                       how, given, n_eval, events)
+
+
+def _body_request(args, state: dict, params: dict) -> RunRequest:
+    """The run of ``--body FILE``: the body's model, --state (default: tilted to the middle of its domain,
+    phidot 1, psidot 10), --param I1/I3/g, --t-end (default 2 s)."""
+    from models.bodies import InvalidBody, default_start, load, model_of
+
+    if args.model is not None or args.start is not None:
+        raise UsageError(f"--body {args.body} is the body: drop the model {args.model or ''}{' and ' if args.model and args.start else ''}"
+                         f"{'--start ' + args.start if args.start else ''}")
+    if args.friction is not None or args.velocity is not None:
+        raise UsageError("--body runs roll without slipping; --friction and --velocity are not built for body files yet")
+    if args.equations != "derived":
+        raise UsageError(f"--equations {args.equations!r}: a body file has the derived equations only")
+    try:
+        body = load(args.body)
+        model = model_of(body)
+    except InvalidBody as err:
+        raise UsageError(str(err)) from None
+    if not state:
+        state, how = default_start(body)
+    else:
+        how = "--state as given, unset components 0"
+    t_end = DEFAULT_T_END if args.t_end is None else str(_positive(args.t_end, "--t-end", "2 (seconds)"))
+    if args.t_end is None:
+        how += f", t_end {DEFAULT_T_END} s (the default; --t-end to change)"
+    given = {"body": str(args.body), "state": {k: str(v) for k, v in state.items()},
+             "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end}
+    return RunRequest(model.name, "derived", params, state, str(t_end), None, None, how, given, body=model)
 
 
 def _short(value) -> str:
@@ -198,15 +233,18 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
     if request.velocity is not None:
         raise UsageError(f"--velocity is for the rolling-and-sliding bodies ({', '.join(COULOMB_NAMES)}); "
                          f"{request.model!r} rolls without slipping, its centre's velocity follows from the state")
-    if request.equations not in sources(request.model):
+    if request.body is None and request.equations not in sources(request.model):
         raise UsageError(f"--equations {_shown(request.equations)} for model {request.model!r}; "
                          f"allowed: {', '.join(sources(request.model))}")
     if tol is not None:
         tol = _positive(tol, "--tol", "1e-15 (the Taylor tolerance; default: the precision's epsilon)")
     friction = None if request.friction is None else _positive(request.friction, "--friction",
                                                                 "0.5 (a friction coefficient)")
-    model = get_model(request.model, request.equations)
-    show = args.progress if getattr(args, "progress", None) is not None else getattr(args, "format", "text") == "text"
+    model = request.body or get_model(request.model, request.equations)
+    # by default only where a person watches: text output and stderr a terminal (a log or a test's captured stderr
+    # would otherwise gain lines that depend on how long the compilation took: on the machine's load)
+    show = args.progress if getattr(args, "progress", None) is not None else (
+        getattr(args, "format", "text") == "text" and isatty(sys.stderr))
     bar = _Progress(sys.stderr, label, request.t_end, show)
     with bar:
         try:
@@ -241,7 +279,7 @@ def add_trajectory_parser(sub) -> None:
                    help="draw the run: FILE.png, FILE.svg or FILE.pdf (path, theta, phi, omega3, energy, normal force)")
     t.add_argument("--format", choices=("json", "text"), default="text", help="what is printed: text (default) or JSON")
     t.add_argument("--progress", action=argparse.BooleanOptionalAction, default=None,
-                   help="progress on stderr once a second after the first two (default: on with --format text, off with json)")
+                   help="progress on stderr once a second after the first two (default: on where stderr is a terminal and the format is text)")
     t.set_defaults(run=cmd_trajectory)
 
 
@@ -271,7 +309,7 @@ def cmd_trajectory(args, session: Session) -> int:
         else:
             from models import get_model
 
-            reason = _not_ok(sol, get_model(request.model, request.equations))
+            reason = _not_ok(sol, request.body or get_model(request.model, request.equations))
             if reason is not None and record["outcome"] == "ok":
                 record["outcome"] = "failed:event_detection" if "domain" in reason else "failed:non_finite"
             failure = reason
@@ -329,7 +367,7 @@ def _typed(args) -> list:
     import shlex
 
     words = ["trajectory"] + ([args.model] if args.model else [])
-    for option, value in (("--start", args.start), ("--t-end", args.t_end), ("--friction", args.friction),
+    for option, value in (("--body", getattr(args, "body", None)), ("--start", args.start), ("--t-end", args.t_end), ("--friction", args.friction),
                           ("--precision", None if args.precision == "double" else args.precision),
                           ("--equations", None if args.equations == "derived" else args.equations),
                           ("--velocity", args.velocity)):

@@ -38,7 +38,7 @@ import copy
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from types import SimpleNamespace
-from typing import Iterator, Optional, Sequence
+from typing import Iterator, Optional
 
 import heyoka as hy
 import numpy as np

@@ -908,7 +908,7 @@ def _dtype(prec: Precision):
 def _rolling(name):
     from models import get_model
 
-    return get_model(coulomb.ROLLING[name])
+    return get_model(coulomb.rolling_name(name))
 
 
 def _copy(ta):

@@ -174,7 +174,6 @@ def start_problems(model: Model, states, normal=None, shown=None):
     normal force.
     """
     states = np.asarray(states)
-    n = states.shape[1]
     as_float = np.array([[float(v) for v in row] for row in states]) if states.dtype == object else \
         states.astype(float)
     dom = model.domain

@@ -244,6 +244,21 @@ def _cases() -> tuple:
                       "derived row 1) with half the rolling speed of its centre of mass: it slides, the friction "
                       "brings the slip to 0 near t = 0.076, and it rolls to t_end",
                       COIN, friction="0.3", velocity=skid_velocity),
+        ReferenceCase("rounded-coin-upright-1", "body:rounded-coin",
+                      {"theta": _exact(_HALF_PI - sp.Rational(1, 20)), "thetadot": "3", "psidot": "20"}, "1", 32, "wild",
+                      "body file models/bodies/rounded-coin.toml (torus rims, tube radius = half-thickness = 1/20)",
+                      "a coin with rounded rims rolling and rocking through the upright six times in 1 s (the paper's "
+                      "ring stops at theta = pi/2: its rims switch)"),
+        ReferenceCase("routh-sphere-standard-10", "body:routh-sphere", {"theta": "0.5", "phidot": "3", "psidot": "30"},
+                      "10", 40, "wild", "body file models/bodies/routh-sphere.toml",
+                      "Routh's sphere (centre of mass 3/10 below the centre) rolling and nutating; energy, Jellett's "
+                      "and Routh's integrals"),
+        ReferenceCase("prolate-ellipsoid-1", "body:prolate-ellipsoid", {"theta": "1.2", "phidot": "2", "psidot": "20"},
+                      "1", 32, "wild", "body file models/bodies/prolate-ellipsoid.toml",
+                      "a uniform prolate ellipsoid of revolution (1/2 x 1) rolling with nutation"),
+        ReferenceCase("oblate-ellipsoid-1", "body:oblate-ellipsoid", {"theta": "0.8", "phidot": "3", "psidot": "15"},
+                      "1", 32, "wild", "body file models/bodies/oblate-ellipsoid.toml",
+                      "a uniform oblate ellipsoid of revolution (1 x 1/2) rolling with nutation"),
     )
 
 

@@ -67,6 +67,8 @@ def registry() -> list:
     jobs += [Job(f"retrograde/{m}", "retrograde_job", (m,), ("verify.studies.retrograde", "verify.report.retrograde"))
              for m in MECHANISMS]
     jobs += friction_jobs()
+    jobs.append(Job("bodies", "verify.studies.bodies:rows_job", (), ("verify.studies.bodies",),
+                    tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
     index = read_index()
     index_file = str(DIRECTORY / "index.json")
     for precision in REFERENCE_PRECISIONS:
@@ -77,6 +79,12 @@ def registry() -> list:
             jobs.append(Job(f"reference/{precision}/{label}", "reference_job", (precision, [e["name"] for e in group]),
                             ("verify.reference",), (index_file, *(str(DIRECTORY / e["file"]) for e in group), *proofs)))
     return jobs
+
+
+def _bodies_directory():
+    from models.bodies import DIRECTORY as bodies
+
+    return bodies
 
 
 def friction_jobs() -> list:

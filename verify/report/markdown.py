@@ -135,6 +135,11 @@ def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] 
     if studies.get("friction") is not None:  # absent from a results.json made before the section
         out += guarded("Friction", lambda: _split_h2("\n".join(render_friction(studies["friction"],
                                                                                studies.get("dissipation")))))
+    if studies.get("bodies") is not None:  # absent from a results.json made before the section
+        from .bodies import render_markdown as render_bodies
+
+        out += guarded("Bodies of revolution", lambda: _split_h2("\n".join(
+            render_bodies(studies["bodies"], studies["reference"]["index"]))))
     from .engines import render_markdown as render_engines
 
     out += _split_h2("\n".join(render_engines(engines)))

@@ -52,7 +52,7 @@ def _check_fig15_rhs():
     th, _, rhs = _fig15_runs()
     t, thr, *_ = _arrays(rhs)
     return _verdict([oscillates(t, thr, _completed(rhs))], (True,), "", "with theta slightly off: oscillations, stable",
-                    f"'slightly off' read as theta0 + 0.01 (not stated); 5 s")
+                    "'slightly off' read as theta0 + 0.01 (not stated); 5 s")
 
 
 @lru_cache(maxsize=None)

@@ -92,8 +92,8 @@ def _fig9_check(side: str, want: int):
                            "the paper's own Fig. 8 (psidot > 0, phidot < 0), or with 'above' read as the signed value, "
                            "they are swapped. Convention-free: |psidot0| 1% above the circle's makes the slow path "
                            "drift against phidot, 1% below with it; and only on circles within about 0.01 in rho of "
-                           f"the CM-at-rest one (theta0 = 0.1; circles at phidot0 = -10, -20, -40 keep the sense of "
-                           f"phidot)", figures=figures, measures=main.measures())
+                           "the CM-at-rest one (theta0 = 0.1; circles at phidot0 = -10, -20, -40 keep the sense of "
+                           "phidot)", figures=figures, measures=main.measures())
         return decide(False, f"slow path {main.word()}", f"{said} CM motion", detail,
                       correction=f"the slow path circles {main.word()}", figures=figures, measures=main.measures())
     return check
