@@ -158,6 +158,7 @@ def _suite_hybrid_run(case: str, precision: str, t_end) -> dict:
     """This suite's own run of a Coulomb case (the event-driven hybrid) on the case's grid, scored in form (b)."""
     from .engine.hybrid import solve
     from .scoring import score
+    from models import get_model
 
     c = _coulomb_case(case)
     grid = [g for g in c.grid() if t_end is None or float(g) <= float(t_end) + 1e-12]
@@ -168,8 +169,6 @@ def _suite_hybrid_run(case: str, precision: str, t_end) -> dict:
     sol = solve(c.run_model, grid[-1], c.state, c.exact_params, friction=c.friction, velocity=c.velocity,
                 precision=precision, n_eval=n)
     wall = time.monotonic() - t0
-    from models import get_model
-
     params = {q.name: float(c.exact_params.get(q.name, q.default)) for q in get_model(c.model).parameters}
     columns = hybrid_form_b(sol, params)
     on_grid = [float(g) for g in grid]
@@ -183,7 +182,7 @@ def _suite_hybrid_run(case: str, precision: str, t_end) -> dict:
                            "run": _hybrid_slides(sol), "reference": _hybrid_slides(sol)}}
     try:
         record["score"] = score(columns, case).to_record()
-    except Exception as err:  # noqa: BLE001 -- the reference files of the Coulomb cases may not be made yet
+    except Exception as err:  # noqa: BLE001 -- named in the row (a case whose reference file is not made, ...)
         record.update(score=None, outcome=f"error: score: {' '.join(str(err).split())[:300]}")
     return record
 

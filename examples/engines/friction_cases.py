@@ -38,11 +38,8 @@ from __future__ import annotations
 
 import json
 from functools import lru_cache
-from pathlib import Path
 
 import numpy as np
-
-ROOT = Path(__file__).resolve().parents[2]
 
 #: Contact slip speed (R/s, length unit per second) above which a run is said to slide (see the module).
 SLIP_THRESHOLD = 0.1
