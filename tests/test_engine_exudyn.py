@@ -55,3 +55,43 @@ def test_a_start_that_is_not_the_case_fails_loudly(adapter):
     off = dict(b0, wz=b0["wz"] + 1e-9 * abs(b0["wz"]) + 1e-6)  # a start off in the 7th digit
     with pytest.raises(RuntimeError, match="differs from the case"):
         adapter.check_start(got, off, "read back")
+
+
+# --- the Coulomb cases (finite friction: the coin rolls, slides and sticks) ------------------------------------
+COULOMB = "coin-coulomb-skid-1"
+T_COULOMB = 0.125  # s: the skid slides from the start, sticks (the reference at 0.0765) and rolls 48 ms after it
+#: min digits to T_COULOMB at the Coulomb "best" (penalty connector, dt 2^-21), Exudyn 1.13.6: 4.72 (phidot
+#: at t = 0.125).  Margin one digit, as above: the error is set by the friction's regularisation and the step
+#: (the sweep in the adapter: 0.1 to 0.15 digits a halving), another build moves it by a fraction of a digit.
+#: The skid sticks at 0.0761 by the contact's slip speed at 2^-10 s outputs, where the reference's own slip speed
+#: crosses the same 0.1 R/s (its stick is at 0.0765): the test holds it to 2 ms.
+COULOMB_MEASURED = 4.72
+STICKS_AT = 0.0761
+
+
+@pytest.fixture(scope="module")
+def coulomb_run(adapter):
+    return adapter.run_case(COULOMB, "best", T_COULOMB)
+
+
+def test_a_skid_is_scored_and_sticks_once(coulomb_run):
+    r = coulomb_run
+    assert r["outcome"] == "ok", r["outcome"]
+    assert r["start_error"] <= 1e-12
+    s = r["score"]
+    assert s["partial"] and s["t_last"] == T_COULOMB
+    assert [w["kind"] for w in s["switches"]] == ["sliding -> rolling"]
+    assert s["min_digits"] >= COULOMB_MEASURED - 1.0, s["verdict"]
+    (slide,) = r["friction"]["run"]["slides"]  # one slide, from the start to the stick
+    assert slide[0] == 0 and abs(slide[1] - STICKS_AT) < 2e-3, slide
+
+
+def test_a_skid_starts_with_the_cases_velocity_read_back(adapter):
+    """The skid's centre of mass moves at the case's (half the rolling speed): set, read back, a wrong one refused."""
+    record = adapter.load_case("coin-coulomb-skid-1")
+    mbs, body, _, b0 = adapter.build(record, adapter.COULOMB_BEST)
+    got = adapter.read_back(mbs, body)
+    assert adapter.check_start(got, b0, "read back") <= 1e-12
+    assert (got["vx"], got["vy"]) == pytest.approx((36.35066065398451, 0.0), abs=1e-12)
+    with pytest.raises(RuntimeError, match="differs from the case"):
+        adapter.check_start(got, dict(b0, vx=b0["vx"] * (1 + 1e-9)), "read back")

@@ -94,3 +94,51 @@ def test_start_in_wrong_frame_is_refused(adapter):
         adapter.set_start = set_start
     assert r["outcome"].startswith("error: MuJoCo's start read back differs"), r["outcome"]
     assert r["score"] is None
+
+
+# --- the Coulomb cases (finite friction: the coin rolls, slides and sticks) ------------------------------------
+COULOMB = "coin-coulomb-skid-1"
+T_COULOMB = 0.125  # s: the skid slides from the start, sticks (the reference at 0.0765) and rolls 48 ms after it
+#: min digits to T_COULOMB at "best", MuJoCo 4.0.0: 1.13 (phidot at t = 0.125); deterministic on one build, the
+#: margin as the disk's above (0.33 digits: a factor 2 in the error).  MuJoCo's skid sticks at 0.0690, 7 ms
+#: before the reference's 0.0765 (the coin hops while it slides: the adapter's docstring), seen by the contact's
+#: slip speed at 1 ms outputs; the test holds it to 2 ms: a run that never sticks, or sticks at once, fails.
+COULOMB_MEASURED = 1.13
+STICKS_AT = 0.0690
+
+
+@pytest.fixture(scope="module")
+def coulomb_run(adapter):
+    return adapter.run_case(COULOMB, "best", T_COULOMB)
+
+
+def test_a_skid_is_scored_and_sticks_once(coulomb_run):
+    r = coulomb_run
+    assert r["outcome"] == "ok" and r["start_readback"] <= 1e-12
+    assert r["parameters"]["friction"] == "0.3 0 0"  # mu on both geoms: MuJoCo takes the element-wise max
+    s = r["score"]
+    assert s["partial"] and s["t_last"] == pytest.approx(T_COULOMB)
+    assert [w["kind"] for w in s["switches"]] == ["sliding -> rolling"]
+    assert s["min_digits"] >= COULOMB_MEASURED - 0.33, s["verdict"]
+    (slide,) = r["friction"]["run"]["slides"]  # one slide, from the start to the stick
+    assert slide[0] == 0 and abs(slide[1] - STICKS_AT) < 2e-3, slide
+
+
+def test_a_skid_starts_with_the_cases_velocity_read_back(adapter):
+    """The skid's centre of mass moves at the case's (half the rolling speed): set, read back, a wrong one refused."""
+    import numpy as np
+
+    record = adapter.case_record("coin-coulomb-skid-1")
+    s = adapter.with_friction(dict(adapter.BEST), record)
+    body = adapter.body_of(record, s["half_height"])
+    m = mujoco.MjModel.from_xml_string(adapter.mjcf(body, s))
+    d = mujoco.MjData(m)
+    b0 = adapter.friction_cases.start_b(record, body["model"], body["params"])
+    adapter.set_start(mujoco, m, d, b0)
+    back = adapter.read_state(mujoco, m, d)
+    assert adapter.check_start(back, b0, record) <= 1e-12
+    assert (back["vx"], back["vy"]) == pytest.approx((36.35066065398451, 0.0), abs=1e-12)
+    slip = adapter.friction_cases.slip_speed({k: np.array([v]) for k, v in back.items()}, record)
+    assert slip[0] == pytest.approx(36.35066065398451, rel=1e-12)  # the contact slides at t = 0: a skid
+    with pytest.raises(RuntimeError, match="differs from case"):
+        adapter.check_start(back, dict(b0, vx=b0["vx"] * (1 + 1e-9)), record)

@@ -98,6 +98,56 @@ Pitfalls (each one silently wrong, not an error)
   No collision margin applies to point contact; the compliant contact sinks m g / k.
 * "WARNING: Rigid half spaces are not currently supported for deformable contact" at
   Finalize is harmless here (no deformable bodies).
+
+Coulomb cases (coin-coulomb-slip-1: mu = 0.87, rolls, slides from 0.0780 to 0.0966, rolls; coin-coulomb-skid-1:
+mu = 0.3, starts sliding, sticks at 0.0765; ``friction_cases``)
+---------------------------------------------------------------------------------------------------------
+* Friction coefficient: ``CoulombFriction(mu, mu)`` (static = dynamic, as the cases) on BOTH geometries.
+  Drake combines two surfaces' coefficients as mu = 2 mu1 mu2 / (mu1 + mu2), static and dynamic apart
+  (``CalcContactFrictionFromSurfaceProperties`` and the ``CoulombFriction`` class docstring, pydrake 1.51.1):
+  mu with mu is mu; mu on the coin and the default 1 elsewhere would not be.
+* Regularisation: the continuous plant uses the Stribeck approximation, parameterised by the stiction
+  tolerance v_s, "the slip velocity that we'd have when we are at edge of the friction cone" (smaller inside
+  it; ``MultibodyPlant.set_stiction_tolerance``): a rolling contact creeps by up to v_s, and a small v_s makes
+  the plant stiff (RK3's steps shrink).  The discrete approximations tamsi, similar and lagged are regularised
+  by the same tolerance, sap by the numerics alone; sap and similar "glide" in sliding contact, O(dt)
+  (``DiscreteContactApproximation`` docstring).
+* Settings: "default" is DEFAULT with mu (discrete 1 ms, lagged: the coin sinks and falls on slip-1, and the
+  skid's first slide ends at 0.011 s); "best" is BEST with the stiction tolerance 3e-4 (COULOMB_SETTINGS): the
+  digits follow v_s, and 1e-4 would take well over the 5 minutes a run may take.
+* The discrete lagged plant at dt = 1e-5 (k 1e9, dissipation 0) never slides on slip-1 (-0.23 digits): where
+  mu_req reaches mu for 19 ms it holds on; on the skid it sticks at 0.0752, 1 ms early (1.65 digits).
+* Error control: RK3 at accuracy 1e-5 (instead of 1e-4) is no better: 1.66 digits on slip-1, and on the skid
+  the stick is followed by four spurious short slides (2.65 digits against 3.45).
+
+Coulomb sweep (continuous RK3, k 1e9, dissipation 0 unless said; min digits over the whole second, slip-1 /
+skid-1; the skid's stick; wall s of stepping, slip-1 / skid-1, loaded machine; the runs compared with this
+suite's hybrid run in double at their own times, the scorer's scales, which ``verify.score`` confirms)::
+
+    default (discrete 1 ms, lagged)                    0.00 / 0.32   0.0109, slides again at 0.050   0.4 / 0.6
+    discrete lagged 1e-5                              -0.23 / 1.65   0.0752 (slip-1 never slides)    10 / 8
+    stiction 1e-3, accuracy 1e-4 (the rolling best)    1.63 / 3.45   0.0761                          70 / 15
+    stiction 1e-3, accuracy 1e-5                       1.66 / 2.65   0.0761, then 4 short slides     54 / 17
+    stiction 3e-4, accuracy 1e-4 (best)                1.96 / 3.49   0.0761                         148 / 31
+
+The skid's stick at 0.0761 is where the reference's own slip speed crosses the 0.1 R/s threshold (its stick
+is at 0.0765): Drake's continuous plant slides and sticks as the exact motion does.
+
+Measured on the Coulomb cases (``python -m verify engines --case coin-coulomb-slip-1 --case coin-coulomb-skid-1``,
+each run in a process of its own on 2 shared cores, scored by ``verify.score`` against the reference files; energy
+= max |E - E_ref| / E_ref(0), slip = max | |u| - s_ref | in R/s, z_P = max |contact height|, slides where the
+contact's slip speed exceeds 0.1 R/s; the reference slides from 0.0780 to 0.0966 on slip-1, its own slip speed
+crossing 0.1 R/s at 0.0793 and 0.0964, and the skid sticks at 0.0765, crossing at 0.0761)::
+
+    case    setting  outcome   min digits (where)        energy   slip    z_P      slides                         wall s
+    slip-1  default  fell      0.00 (psi, t = 0.634)    1.6      18      1.2      0.0187-0.0400, 0.0401-         2.0
+    slip-1  best     ok        1.96 (phi, t = 0.892)    1.4e-4   0.030   4.2e-6   0.0793-0.0965                  273
+    skid-1  default  ok        0.32 (psi, t = 1)        6.5e-2   29      3.7e-2   0-0.0109, 0.0505-              1.1
+    skid-1  best     ok        3.49 (thetadot, t = 0.001) 7.0e-5 0.017   1.4e-6   0-0.0761                       62
+
+(wall = simulator set-up and stepping, on a machine loaded by another run: 148 s and 31 s alone; the skid's
+fewest digits are the undamped contact's first sink into the plane, 3.97 digits at the end; the creep where
+the reference rolls is 4.4e-4 and 3.8e-4 R/s at "best", 1.5 and 1.3 times the stiction tolerance 3e-4.)
 """
 from __future__ import annotations
 
@@ -112,11 +162,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 if str(ROOT) not in sys.path:
     sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, beside this file
 
-from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
-from verify.frames import QUATERNION_FORM, euler_to_b  # noqa: E402
-from verify.reference.store import DIRECTORY  # noqa: E402
+from verify.frames import QUATERNION_FORM  # noqa: E402
+import friction_cases  # noqa: E402
 
 #: What a new user gets: MultibodyPlantConfig() and Simulator() untouched (time_step 1e-3,
 #: 'lagged' SAP, hydroelastic_with_fallback -> point contact for these geometries, stiffness
@@ -130,6 +180,9 @@ DEFAULT = {"time_step": 1e-3, "discrete_contact_approximation": "lagged",
 BEST = {**DEFAULT, "time_step": 0.0, "integrator": "runge_kutta3", "accuracy": 1e-4, "point_stiffness": 1e9,
         "dissipation": 0.0, "stiction_tolerance": 1e-3, "mu": 1.0}
 SETTINGS = {"default": DEFAULT, "best": BEST}
+#: A Coulomb case (coin-coulomb-*): the same defaults; its best is BEST with a tighter stiction tolerance (3e-4:
+#: the slip phase and the rolling after it are set by it), from the Coulomb sweep in the docstring.
+COULOMB_SETTINGS = {"default": DEFAULT, "best": {**BEST, "stiction_tolerance": 3e-4}}
 #: The sweep on disk-standard-1 to t = 1 s (the docstring's table): (changes from DEFAULT, min digits,
 #: final digits, energy drift, wall s).  None: the run sank through the plane ('fell').
 _C = {"time_step": 0.0, "integrator": "runge_kutta3", "accuracy": 1e-4, "dissipation": 0.0}
@@ -144,7 +197,16 @@ SWEEP = [({}, -0.19, 0.00, 5.2e-1, 1.1),
 
 
 def load_case(case: str) -> dict:
-    return json.loads((DIRECTORY / f"{case}.json").read_text())
+    """The case's record (:func:`friction_cases.load_case`: with ``friction`` and ``velocity``)."""
+    return friction_cases.load_case(case)
+
+
+def with_friction(s: dict, record: dict) -> dict:
+    """The setting for this case: a Coulomb case's mu as static and dynamic coefficient of both geometries
+    (Drake combines two surfaces' coefficients as 2 mu1 mu2 / (mu1 + mu2): mu and mu give mu), and its
+    output every 2^-10 s (to resolve the slip phase and the stick)."""
+    mu = friction_cases.friction_of(record)
+    return s if mu is None else {**s, "mu": mu, "output_dt": min(s["output_dt"], 2.0 ** -10)}
 
 
 def start_tolerance(record: dict, setting: dict) -> float:
@@ -171,9 +233,8 @@ def body_of(record: dict) -> dict:
 
 
 def start_of(record: dict, body: dict) -> dict:
-    """The case's start in form (b) (verify.frames.euler_to_b), as floats."""
-    state = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
-    return {c: float(v[0]) for c, v in euler_to_b(body["model"], state, body["params"]).items()}
+    """The case's start in form (b) (verify.frames.euler_to_b), as floats; a skid's CM velocity where given."""
+    return friction_cases.start_b(record, body["model"], body["params"])
 
 
 def build(body: dict, s: dict):
@@ -306,7 +367,9 @@ def run_case(case: str, setting="default", t_end: float | None = None, out: str 
     """Run ``case`` in Drake at ``setting`` ('default', 'best' or a dict over DEFAULT), score it."""
     record = load_case(case)
     name = setting if isinstance(setting, str) else "custom"
-    s = dict(SETTINGS[setting]) if isinstance(setting, str) else {**DEFAULT, **setting}
+    table = COULOMB_SETTINGS if friction_cases.friction_of(record) is not None else SETTINGS
+    s = dict(table[setting]) if isinstance(setting, str) else {**table["default"], **setting}
+    s = with_friction(s, record)
     t_end = float(record["t_end"]) if t_end is None else min(float(t_end), float(record["t_end"]))
     rec = {"engine": "Drake", "version": version(), "case": case, "setting": name, "parameters": s, "t_end": t_end}
     t0 = time.perf_counter()
@@ -317,6 +380,9 @@ def run_case(case: str, setting="default", t_end: float | None = None, out: str 
         return rec
     rec["wall_s"] = round(time.perf_counter() - t0, 3)
     rec["outcome"] = outcome_of(cols, body_of(record))
+    rec["_columns"] = cols  # not JSON: the run itself
+    if friction_cases.friction_of(record) is not None:  # where the run slides and sticks, beside the reference's switches
+        rec["friction"] = friction_cases.friction_record(cols, record)
     if out:
         write_csv(cols, out)
     try:
@@ -346,7 +412,8 @@ def main() -> None:
     args = ap.parse_args()
     setting = args.setting
     if args.set:
-        setting = {**SETTINGS[args.setting], **{k: json.loads(v) for k, v in (a.split("=", 1) for a in args.set)}}
+        table = COULOMB_SETTINGS if friction_cases.friction_of(load_case(args.case)) is not None else SETTINGS
+        setting = {**table[args.setting], **{k: json.loads(v) for k, v in (a.split("=", 1) for a in args.set)}}
     rec = run_case(args.case, setting, args.t_end, args.out)
     print(f"Drake {rec['version']}, {rec['case']}, setting {rec['setting']}: outcome {rec['outcome']}, "
           f"wall {rec['wall_s']} s")

@@ -348,9 +348,10 @@ def cmd_report(args, session: Session) -> int:
 
 def cmd_engines(args, session: Session) -> int:
     """``engines``: the leaderboard (verify.leaderboard): every engine adapter on the reference cases."""
+    import json
     from pathlib import Path
 
-    from ..leaderboard import CASES, adapters, rewrite_figure, run_board, write_board
+    from ..leaderboard import CASES, adapters, merge_boards, rewrite_figure, run_board, write_board
 
     if args.render_only:
         if not (Path(args.out) / "engines.json").exists():
@@ -362,9 +363,19 @@ def cmd_engines(args, session: Session) -> int:
         if name not in found:
             raise UsageError(f"--engine {name!r}: no adapter examples/engines/{name}_adapter.py; allowed: "
                              f"{', '.join(found) or 'none found'}")
+    known = dict(CASES)
+    for name in args.case or ():
+        if name not in known:
+            raise UsageError(f"--case {name!r}: not a case of the board; allowed: {', '.join(known)}")
     out = _output_folder(args.out)
-    cases = CASES[:1] if args.quick else CASES
+    if args.case:
+        cases = tuple((c, t) for c, t in CASES if c in args.case)
+    else:
+        cases = CASES[:1] if args.quick else CASES
     board = run_board(args.engine, cases, progress=lambda s: print(s, file=sys.stderr, flush=True))
+    existing = Path(out) / "engines.json"
+    if args.case and existing.exists():  # a rerun of some cases: the board's other rows stay
+        board = merge_boards(json.loads(existing.read_text()), board)
     written = write_board(board, out)
     session.emit(f"wrote {', '.join(str(p) for p in written)} ({len(board['rows'])} runs); "
                  "next: make report (its Engines section reads them)")

@@ -126,6 +126,9 @@ def parser() -> argparse.ArgumentParser:
     en.add_argument("--out", default="reports", help="output folder (default: reports)")
     en.add_argument("--engine", action="append", metavar="NAME", help="only this adapter (repeatable), e.g. mujoco")
     en.add_argument("--quick", action="store_true", help="the disk case only")
+    en.add_argument("--case", action="append", metavar="NAME",
+                    help="only this case of the board (repeatable), e.g. coin-coulomb-skid-1; its rows replace the "
+                         "same rows of an existing engines.json, the others are kept")
     en.add_argument("--render-only", action="store_true", help="redraw figures/engines.png from engines.json, run nothing")
     en.set_defaults(run=cmd_engines)
 
