@@ -440,12 +440,15 @@ def _slow_solve(seconds):
 
 
 def test_progress_through_solves_hook(capsys, monkeypatch):
-    """With solve(progress=callable(t, steps)) the CLI shows t, steps and the rate on stderr; with
-    --format json only under --progress."""
+    """With solve(progress=callable(t, steps)) the CLI shows t, steps and the rate on stderr: by default where
+    stderr is a terminal (captured here: not one, so none), with --progress anywhere; with --format json only
+    under --progress."""
     monkeypatch.setattr(progress, "PROGRESS_INTERVAL", 0.05)
     monkeypatch.setattr(single, "solve", _slow_solve(60))
     argv = ["trajectory", "disk", "--state", "theta=1.2", "--state", "psidot=10", "--t-end", "1"]
     code, out, err = run(capsys, *argv)
+    assert code == 0 and "outcome     ok" in out and "steps/s" not in err
+    code, out, err = run(capsys, *argv, "--progress")
     assert code == 0 and "outcome     ok" in out
     assert "trajectory disk: t = 0.5 of 1 s (50 %), 500 steps" in err and "steps/s" in err
     code, out, err = run(capsys, *argv, "--format", "json")
