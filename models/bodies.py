@@ -76,12 +76,13 @@ class Body:
 
 def exact(text, what: str) -> sp.Expr:
     """A number of a body file, read exactly: a decimal, a fraction, or a rational multiple of pi."""
-    if isinstance(text, bool) or not isinstance(text, (str, int)):
+    if not isinstance(text, str):
         raise InvalidBody(f"{what} = {text!r}: give numbers as strings (\"0.05\", \"301/1200\", \"pi/2\"), read exactly")
-    text = str(text).strip()
-    if not text or not _NUMBER.match(text):
-        raise InvalidBody(f"{what} = {text!r}: not a number (allowed: a decimal, a fraction such as 301/1200, or a "
-                          "rational multiple of pi such as pi/2)")
+    text = text.strip()
+    # no powers and no exponent beyond 3 digits: '9**9**9**9' or '1e999999999' would hang sympy's exact arithmetic
+    if not text or len(text) > 80 or "**" in text or re.search(r"[eE][+-]?\d{4,}", text) or not _NUMBER.match(text):
+        raise InvalidBody(f"{what} = {text!r}: not a number (allowed: a decimal with an exponent of at most 3 digits, "
+                          "a fraction such as 301/1200, or a rational multiple of pi such as pi/2; no powers)")
     try:  # the pattern lets through digits, operators, parentheses and pi only: nothing else to evaluate
         value = sp.sympify(text, locals={"pi": sp.pi}, rational=True)
     except (sp.SympifyError, SyntaxError, TypeError, ZeroDivisionError):
@@ -104,6 +105,8 @@ def body_from_mapping(data: dict, source: str = "the body") -> Body:
     if not isinstance(profile, dict) or "kind" not in profile:
         raise InvalidBody(f"{source}: a [profile] table with a kind is needed")
     kind = profile["kind"]
+    if not isinstance(kind, str):
+        raise InvalidBody(f"{source}: profile.kind = {kind!r}; allowed: a string, one of the profile kinds")
     fields = {k: exact(v, f"profile.{k}") for k, v in profile.items() if k != "kind"}
     inertia = data.get("inertia")
     if not isinstance(inertia, dict) or set(inertia) != {"I1", "I3"}:
@@ -153,6 +156,8 @@ def load(path) -> Body:
         path = DIRECTORY / f"{path.name}.toml"
     try:
         text = path.read_text()
+    except UnicodeDecodeError:
+        raise InvalidBody(f"body file {str(path)!r} is not UTF-8 text (a TOML body file is)") from None
     except OSError as err:
         raise InvalidBody(f"body file {str(path)!r}: {err.strerror or err}; shipped bodies: {', '.join(shipped())}") from None
     try:

@@ -99,16 +99,21 @@ class SlidingPhase:
     painleve_margin: sp.Expr
 
 
-@lru_cache(maxsize=None)
-def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> SlidingPhase:
-    """The sliding phase of a body of revolution with r_P = (0, r2(theta), r3(theta)) (paper Eqs. 5-7)."""
+def contact_kinematics(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> tuple:
+    """What every sliding law starts from (paper Eqs. 5-7): omega, its rate, the frame's rate, the vertical Z,
+    r_P, the inertia, the height z_C = -r_P . Z of C and its first two derivatives (z_C'' linear in thetaddot)."""
     w, wdot, Om = omega_body(), omega_body_dot(), omega_frame()
     Z = vertical_in_frame()
     r = sp.Matrix([0, r2, r3])
-    inertia = sp.diag(I1, I1, I3)
     height = sp.simplify(-r.dot(Z))
     zdot = time_derivative(height)
-    zddot = time_derivative(zdot)  # linear in thetaddot
+    return w, wdot, Om, Z, r, sp.diag(I1, I1, I3), height, zdot, time_derivative(zdot)
+
+
+@lru_cache(maxsize=None)
+def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> SlidingPhase:
+    """The sliding phase of a body of revolution with r_P = (0, r2(theta), r3(theta)) (paper Eqs. 5-7)."""
+    w, wdot, Om, Z, r, inertia, height, zdot, zddot = contact_kinematics(I1, I3, r2, r3)
 
     beta = slip_direction - phi
     cb, sb = sp.cos(beta), sp.sin(beta)

@@ -51,11 +51,11 @@ from functools import lru_cache
 import sympy as sp
 
 from .base import Parameter
-from .coulomb import FRICTION, mu
+from .coulomb import FRICTION, contact_kinematics, mu
 from .rolling import _simplify, newton_euler
 from .symbols import (
-    ACCELERATIONS, STATE, g, omega_body, omega_body_dot, omega_frame, phi, phidot, theta,
-    time_derivative, vertical_in_frame,
+    ACCELERATIONS, STATE, g, phi, phidot, theta,
+    time_derivative,
 )
 
 slip_e1, slip_h, work = sp.symbols("slip_e1 slip_h work", real=True)
@@ -113,13 +113,7 @@ def law_factor() -> sp.Expr:
 def derive_smooth(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> SmoothSliding:
     """The smooth-law sliding equations of a body of revolution with r_P = (0, r2(theta), r3(theta))
     (paper Eqs. 5-7 with F_h = -mu N u / sqrt(|u|^2 + eps^2))."""
-    w, wdot, Om = omega_body(), omega_body_dot(), omega_frame()
-    Z = vertical_in_frame()
-    r = sp.Matrix([0, r2, r3])
-    inertia = sp.diag(I1, I1, I3)
-    height = sp.simplify(-r.dot(Z))
-    zdot = time_derivative(height)
-    zddot = time_derivative(zdot)  # linear in thetaddot
+    w, wdot, Om, Z, r, inertia, height, zdot, zddot = contact_kinematics(I1, I3, r2, r3)
 
     s, c = sp.sin(theta), sp.cos(theta)
     slip = sp.Matrix([slip_e1, slip_h * c, -slip_h * s])  # u in 1-2-3 components (h = (0, cos, -sin))

@@ -44,7 +44,9 @@ def test_the_hurricane_balls_from_their_profile_give_the_same_bits_and_the_disk_
     a = solve("hurricane", "0.5", start, n_eval=9)
     b = solve(model_of(load("hurricane")), "0.5", start, n_eval=9)
     assert np.array_equal(a.y, b.y)
-    # the disk's file has I1, I3 where the model has k, 2 k: other roundings of the same equations
+    # the disk's file has I1, I3 where the model has k, 2 k: other roundings of the same equations, which differ
+    # by about eps a step, carried by the flow's transition matrix (row sums ~1e3 by 0.5 s, HEYOKA.md) over ~60
+    # steps: eps sqrt(N) |Phi| = 2.2e-16 x 8 x 1e3 = 2e-12 relative; 1e-11 leaves a factor 5
     start = {"theta": "1.2", "phidot": "1", "psidot": "10"}
     a = solve("disk", "0.5", start, n_eval=9)
     b = solve(model_of(load("disk")), "0.5", start, n_eval=9)
@@ -92,6 +94,10 @@ def test_the_contact_point_is_the_profiles_lowest_point(kind):
     ({"profile": {"kind": "point-rim", "radius": "0"}}, "radius = 0"),
     ({"profile": {"kind": "point-rim", "radius": "__import__('os')"}}, "not a number"),
     ({"profile": {"kind": "point-rim", "radius": 1.5}}, "give numbers as strings"),
+    ({"profile": {"kind": "point-rim", "radius": 1}}, "give numbers as strings"),  # a TOML integer too
+    ({"profile": {"kind": ["point-rim"], "radius": "1"}}, "profile.kind"),
+    ({"inertia": {"I1": "9**9**9**9", "I3": "1/2"}}, "no powers"),  # would hang sympy
+    ({"inertia": {"I1": "1e999999999", "I3": "1/2"}}, "exponent of at most 3 digits"),
 ])
 def test_bad_bodies_are_refused_naming_the_value(change, words):
     data = {"name": "bad", "profile": {"kind": "point-rim", "radius": "1"}, "inertia": {"I1": "1/4", "I3": "1/2"}}
@@ -129,6 +135,13 @@ def test_a_routh_sphere_keeps_energy_jellett_and_routh_and_a_run_through_the_upr
     rims = body_of_revolution("two-rims", "301/1200", "1/2", radius="1", half_thickness="1/20")
     stopped = solve(rims, "0.1", {"theta": math.pi / 2 - 0.05, "thetadot": 3}, n_eval=11)
     assert stopped.outcome == "event:rim_switch" and stopped.t[-1] < 0.05, (stopped.outcome, start)
+
+
+def test_a_body_file_that_is_not_text_is_refused(tmp_path):
+    junk = tmp_path / "junk.toml"
+    junk.write_bytes(bytes(range(128, 256)))
+    with pytest.raises(InvalidBody, match="not UTF-8"):
+        load(junk)
 
 
 def test_the_command_line_runs_a_body_file_and_refuses_a_bad_one(tmp_path, capsys):

@@ -246,12 +246,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
             raise UsageError(f"{request.model} takes the derived equations at the precision's epsilon only "
                              "(no --equations paper, --tol, --high-accuracy)")
         friction = _positive(request.friction, "--friction", "0.5 (a Coulomb coefficient > 0)")
-        velocity = None
-        if request.velocity is not None:
-            velocity = request.velocity.split(",")
-            if len(velocity) != 2:
-                raise UsageError(f"--velocity {_shown(request.velocity)}; allowed: two numbers VX,VY")
-            velocity = [_decimal(v, "--velocity VX,VY") for v in velocity]
+        velocity = _velocity(request.velocity)
         from ..engine import hybrid
 
         try:
@@ -307,12 +302,7 @@ def _run_smooth(request: RunRequest, args, precision, tol):
                          "(no --equations paper, --tol, --high-accuracy)")
     friction = _positive(request.friction, "--friction", "0.3 (a friction coefficient > 0)")
     eps = _positive(request.slip_scale, "--slip-scale", "1 (the slip scale in R/s, > 0)")
-    velocity = None
-    if request.velocity is not None:
-        velocity = request.velocity.split(",")
-        if len(velocity) != 2:
-            raise UsageError(f"--velocity {_shown(request.velocity)}; allowed: two numbers VX,VY")
-        velocity = [_decimal(v, "--velocity VX,VY") for v in velocity]
+    velocity = _velocity(request.velocity)
     body = request.model[len("body:"):-len("+smooth")]
     try:
         return smooth.solve(body, request.t_end, request.state, request.params, friction=friction, slip_scale=eps,
@@ -346,6 +336,16 @@ def smooth_text(record: dict) -> str:
                  + ("" if jellett is None else f"; Jellett's lambda: {jellett:.3g} eps of its term scale")
                  + f"; {record['steps']} Taylor steps")
     return "\n".join(lines)
+
+
+def _velocity(text):
+    """--velocity VX,VY as two exact decimals, or None; bad input: UsageError naming it."""
+    if text is None:
+        return None
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise UsageError(f"--velocity {_shown(text)}; allowed: two numbers VX,VY")
+    return [_decimal(v, "--velocity VX,VY") for v in parts]
 
 
 def add_trajectory_parser(sub) -> None:

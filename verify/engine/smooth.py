@@ -20,6 +20,10 @@ happen below the body's critical friction, :func:`models.coulomb.critical_fricti
 Checks carried by every run (:class:`SmoothSolution`): E + W against E(0) in units of epsilon times E's
 term scale up to each output (:func:`verify.engine.hybrid_guards.balance_drift_in_eps`, the Coulomb runs'
 measure), and for a sphere Jellett's lambda = L_C . r_P against lambda(0) in epsilon of its own term scale.
+Both are held to the Coulomb runs' bound, 4 eps a step (:func:`~verify.engine.hybrid_guards.balance_bound_in_eps`
+with no switch: each step commits at most the tolerance and about as much again in the polynomial's
+evaluation, carried by the flow, of which both are invariants); a run beyond it raises
+:class:`IntegrationError` ('failed:energy_balance' or 'failed:jellett') with the run up to there.
 """
 from __future__ import annotations
 
@@ -38,7 +42,7 @@ from models.coulomb import mu as MU
 from . import heyoka_log, integrators
 from .auxiliary import _in_turns
 from .compile import symbol_map, to_heyoka
-from .hybrid_guards import balance_drift_in_eps
+from .hybrid_guards import balance_bound_in_eps, balance_drift_in_eps
 from .problem import max_step
 from .trajectory import IntegrationError
 from .validation import InvalidStart, first_problem, parameters as resolve_parameters, positive_number
@@ -273,9 +277,17 @@ def _record(c: _Compiled, prec, pars, par_vector, t, y, label, steps) -> SmoothS
         jellett = out[3]
         j_scale = np.sum(np.abs(out[first + c.n_energy_terms:]), axis=0)
         j_drift = float(np.max(balance_drift_in_eps(jellett, [prec.zero()] * len(t), j_scale, prec.eps)))
-    return SmoothSolution(c.rolling.name, prec, pars, t, y, energy, work, normal, height, jellett,
-                          float(np.max(drift)), j_drift, label, steps,
-                          message="t_end reached" if label == "ok" else f"stopped at {label}")
+    sol = SmoothSolution(c.rolling.name, prec, pars, t, y, energy, work, normal, height, jellett,
+                         float(np.max(drift)), j_drift, label, steps,
+                         message="t_end reached" if label == "ok" else f"stopped at {label}")
+    bound = balance_bound_in_eps(steps, 0)
+    for what, value, outcome in (("E + W", sol.energy_plus_work_drift_in_eps, "failed:energy_balance"),
+                                 ("Jellett's integral", j_drift, "failed:jellett")):
+        if value is not None and not value <= bound:  # NaN fails too
+            raise IntegrationError(f"the smooth-law run of {c.rolling.name!r} broke its own guard: {what} drifted "
+                                   f"{value:.3g} eps of its term scale, more than the {bound:g} eps its {steps} steps "
+                                   "allow; the run is not reliable", outcome, t[-1], y[:, -1], trajectory=sol)
+    return sol
 
 
 def _number(what, value, prec, allowed, ok):

@@ -4,11 +4,15 @@ Every start is the standard one of :mod:`.theory`: tilt theta0 = 0.1 rad, spin n
 (theta-dot = phi-dot = 0, psi-dot = n), the centre of mass at rest (``velocity = (0, 0)``: the contact
 slips at |omega x r_P| = n R sin theta0 at t = 0), friction mu = 0.3, g = 980 (R = 1 cm).
 
-**Two measures of "inverts"**, computed by different routes from the run:
+**What "inverts" rests on**:
 
 * ``t_theta``: the first output time where theta (the state) exceeds :data:`THETA_INVERTED` = 2.5 rad;
 * ``t_height``: the first output time where the height of C, evaluated by the model's own z_C expression
-  (heyoka cfunc of the state), is within :data:`HEIGHT_MARGIN` = 0.01 R of its inverted value R + c.
+  (heyoka cfunc of the state), is within :data:`HEIGHT_MARGIN` = 0.01 R of its inverted value R + c.  For a
+  sphere z_C = R - c cos(theta) is a function of theta alone, so this is *not* an independent measure of the
+  motion (it checks the compiled z_C against theta, and always comes after ``t_theta``); the independent
+  route is the energy: a run settled at a minimum theta* of V_lambda has lost to friction exactly
+  E0 - V_lambda(theta*), the work quadrature W (a state of the run) against the closed form of :mod:`.theory`.
 
 The verdict ``inverts`` needs both, and the run's last tenth above 2.5 rad; ``turning`` has passed 2.5 rad but
 not settled by the end; ``upright`` is a last tenth below 0.5 rad; anything else ends ``tilted`` at the mean
@@ -57,6 +61,12 @@ def measures(t, theta, height, top: theory.Top) -> dict:
             "max_theta": float(theta.max()), "verdict": verdict}
 
 
+def _stopped(m: dict, outcome: str) -> dict:
+    """A run stopped by an event before t_end (contact lost, the rows jam, the axis vertical) gets no verdict of
+    its motion: its verdict says where it stopped."""
+    return m if outcome == "ok" else {**m, "verdict": f"stopped:{outcome}"}
+
+
 def smooth_case(body: str, spin, eps, t_end="40", n_eval: int = 4001, precision: str = "double") -> dict:
     """One smooth-law run of the standard start: measures, E + W and Jellett's drift (in eps), steps."""
     from ...engine import smooth
@@ -65,7 +75,8 @@ def smooth_case(body: str, spin, eps, t_end="40", n_eval: int = 4001, precision:
     sol = smooth.solve(body, t_end, {"theta": START_TILT, "psidot": str(spin)}, friction=FRICTION, slip_scale=str(eps),
                        velocity=("0", "0"), n_eval=n_eval, precision=precision)
     return {"body": body, "law": "smooth", "spin": float(spin), "eps": float(eps), "t_end": float(t_end),
-            "outcome": sol.outcome, "steps": sol.steps, **measures(sol.t, sol["theta"], sol.height, top),
+            "outcome": sol.outcome, "steps": sol.steps,
+            **_stopped(measures(sol.t, sol["theta"], sol.height, top), sol.outcome),
             "energy_plus_work_in_eps": sol.energy_plus_work_drift_in_eps, "jellett_in_eps": sol.jellett_drift_in_eps,
             "end_slip": float(np.max(sol.slip_speed[-max(len(sol.t) // 10, 1):])),
             "min_theta": float(np.min(np.asarray(sol["theta"], dtype=float))),
@@ -83,7 +94,8 @@ def coulomb_case(body: str, spin, t_end="5", n_eval: int = 1001) -> dict:
     height = float(top.R) - float(top.c) * np.cos(theta)  # z_C = R - c cos(theta) (models.profiles, sphere)
     return {"body": body, "law": "coulomb", "spin": float(spin), "t_end": float(t_end), "outcome": sol.outcome,
             "steps": sol.steps, "phases": [(p.kind, float(p.t_start), float(p.t_end), p.ended) for p in sol.phases],
-            **measures(sol.t, theta, height, top), "energy_plus_work_in_eps": sol.energy_plus_work_drift_in_eps,
+            **_stopped(measures(sol.t, theta, height, top), sol.outcome),
+            "energy_plus_work_in_eps": sol.energy_plus_work_drift_in_eps,
             "jellett_in_eps": jellett_drift_in_eps(body, sol.y, sol.params), "min_theta": float(theta.min())}
 
 
