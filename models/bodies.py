@@ -159,8 +159,10 @@ def default_start(body: Body) -> tuple:
 def load(path) -> Body:
     """The body of the TOML file at ``path``, or of a name: a shipped body's ('rounded-coin'), or a model name's key
     'NAME@HASH' (:func:`resolve`: a body file registered in this process or saved in the cache)."""
-    text = str(path).removeprefix(BODY_PREFIX)
-    if not Path(text).exists() and _KEY.fullmatch(text):
+    text = str(path)
+    if text.startswith(BODY_PREFIX) and not Path(text).exists():  # a model name body:NAME or body:NAME@HASH
+        return resolve(text[len(BODY_PREFIX):])
+    if _KEY.fullmatch(text) and not Path(text).exists():
         return resolve(text)
     path = Path(path)
     if not path.suffix and not path.exists():

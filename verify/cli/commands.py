@@ -104,16 +104,61 @@ def cmd_plot(args, session: Session) -> int:
         columns = read_run(args.run_file)
     except RunFileError as err:
         raise UsageError(str(err)) from None
+    body = _recorded_body(columns.meta, args.run_file)
     write_plot(columns, out)
-    session.emit(f"wrote {out} ({columns.meta.get('model')}, {len(columns.values['t'])} points, "
-                 f"{columns.meta.get('outcome')})")
+    session.emit(f"wrote {out} ({columns.meta.get('model')}{f', the body {body}' if body else ''}, "
+                 f"{len(columns.values['t'])} points, {columns.meta.get('outcome')})")
     return 0
+
+
+def _recorded_body(meta: dict, run_file) -> str | None:
+    """The name of the body a run's file records (``trajectory --body``), read back from its exact text and checked
+    against its fingerprint and model name, then registered (its name resolves here); None for a model's run."""
+    import tomllib
+
+    from models.bodies import InvalidBody, body_from_mapping, fingerprint, register
+
+    recorded = meta.get("body")
+    if recorded is None:
+        return None
+    try:
+        body = body_from_mapping(tomllib.loads(recorded["toml"]), f"{run_file}'s body")
+    except (KeyError, TypeError, tomllib.TOMLDecodeError, InvalidBody) as err:
+        raise UsageError(f"{run_file}: the body it records cannot be read ({err}); allowed: a file written by "
+                         "'trajectory --body ... --output'") from None
+    if fingerprint(body) != recorded.get("fingerprint") or register(body) != recorded.get("model"):
+        raise UsageError(f"{run_file}: the body text it records does not match its fingerprint "
+                         f"{str(recorded.get('fingerprint'))[:12]} (the file was edited); re-run the trajectory")
+    return body.name
+
+
+def _body_or_model(args, what: str) -> tuple:
+    """(body model or None, the rest of the positionals): ``--body FILE`` or ``body:NAME[@HASH]`` in the model's place."""
+    from models.catalogue import BODY_PREFIX
+
+    from .body_studies import body_model
+
+    given = [a for a in (args.model, getattr(args, "motion", None)) if a is not None]
+    if args.body is not None:
+        if given and given[0].startswith(BODY_PREFIX):
+            raise UsageError(f"give the body once: {given[0]} or --body {args.body}")
+        return body_model(args.body, "--body"), given
+    if given and given[0].startswith(BODY_PREFIX):
+        return body_model(given[0], what), given[1:]
+    return None, given
 
 
 def cmd_threshold(args, session: Session) -> int:
     from ..studies.thresholds import bracket, threshold, to_record
 
     params = _numeric_pairs(args.param, "param")
+    body, rest = _body_or_model(args, "threshold")
+    if body is not None or args.theta0 is not None:
+        return _body_threshold(args, session, body, rest, params)
+    if len(rest) != 2:
+        raise UsageError("threshold takes a model and a motion (threshold disk straight-line), or a body and a motion "
+                         "(threshold --body FILE.toml straight-line, threshold body:NAME sleeping)")
+    args.model, args.motion = rest
     nonlinear = None
     try:
         if args.nonlinear_tilt is not None:
@@ -153,21 +198,47 @@ def cmd_threshold(args, session: Session) -> int:
     return 0
 
 
+def _body_threshold(args, session: Session, body, rest: list, params: dict) -> int:
+    """``threshold --body FILE MOTION`` / ``threshold body:NAME MOTION`` (:mod:`.body_studies`)."""
+    from .body_studies import body_threshold, threshold_text
+
+    if body is None:
+        raise UsageError("--theta0 picks one of a body's steady motions; give a body (--body FILE, body:NAME)")
+    if len(rest) != 1:
+        raise UsageError(f"threshold of a body takes one motion after it (straight-line, diameter-spin, sleeping); "
+                         f"got {len(rest)}: {' '.join(rest) or 'none'}")
+    if args.nonlinear_tilt is not None:
+        raise UsageError("--nonlinear-tilt is built for the paper's models (disk, ring, hurricane, ...): a body's threshold "
+                         "is checked on its full equations by verify/studies/steady_confirm.py (10 % either side)")
+    rec = body_threshold(body, rest[0], params, args.theta0)
+    session.emit(_dumps(rec) if args.format == "json" else threshold_text(rec))
+    return 0
+
+
 def cmd_spindown(args, session: Session) -> int:
     from ..studies.spindown import spindown, to_record
 
     params = _numeric_pairs(args.param, "param")
     theta = _decimal(args.theta, f"--theta {_shown(args.theta)}")
+    body, rest = _body_or_model(args, "spindown")
+    if len(rest) != (0 if body is not None else 1):
+        raise UsageError("spindown takes a model (disk or ring) or a body (--body FILE.toml, body:NAME), and --theta")
+    energy = "m R^2/s^2"
     try:
-        rec = to_record(spindown(args.model, theta, args.family, params))
+        if body is not None:
+            from .body_studies import body_spindown_record
+
+            rec, energy = body_spindown_record(body, theta, args.family, params), "M L^2/s^2"
+        else:
+            rec = to_record(spindown(rest[0], theta, args.family, params))
     except ValueError as err:
         raise UsageError(str(err)) from None
     if args.format == "json":
         session.emit(_dumps(rec))
         return 0
-    units = {"theta": "rad", "phidot": "s^-1", "psidot": "s^-1", "paper_phidot": "s^-1",
-             "energy": "m R^2/s^2"}
-    session.emit("\n".join(f"{k:<15} {v}{' ' + units[k] if k in units else ''}" for k, v in rec.items()))
+    units = {"theta": "rad", "phidot": "s^-1", "psidot": "s^-1", "paper_phidot": "s^-1", "energy": energy}
+    session.emit("\n".join(f"{k:<15} {'none (no closed form for this body)' if v is None else v}"
+                           f"{' ' + units[k] if k in units and v is not None else ''}" for k, v in rec.items()))
     return 0
 
 
