@@ -251,6 +251,8 @@ def cmd_reference(args, session: Session) -> int:
     say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
     if args.export is None and args.format == "csv":
         raise UsageError("--format csv is for --export; --check prints text or json")
+    if args.body is not None:
+        args.case = _body_cases(args, directory)
     mode = "--export" if args.export is not None else "--prove" if args.prove else "--make" if args.make else "--check"
     for option, value, modes in (("--until", args.until, ("--prove",)), ("--budget", args.budget, ("--prove",)),
                                  ("--jobs", args.jobs, ("--make",)), ("--format", args.format, ("--check", "--export"))):
@@ -290,6 +292,26 @@ def cmd_reference(args, session: Session) -> int:
     if failed:
         raise RunFailed(f"{len(failed)} case(s) out of bound: {', '.join(failed)}")
     return 0
+
+
+def _body_cases(args, directory) -> list:
+    """``reference --check --body NAME``: the names of every case of that body (its rolling and its Coulomb cases)."""
+    from ..scoring.casefiles import read_index
+    from .body_studies import body_model
+
+    if not args.check or args.case:
+        raise UsageError("--body is for --check without --case: it checks every case of that body")
+    name = body_model(args.body, "--body").name
+    try:
+        index = read_index(directory)
+    except (OSError, ValueError) as err:
+        raise UsageError(f"--dir {directory}: no reference set to check ({err})") from None
+    cases = [c["name"] for c in index["cases"] if c["model"].split("+")[0] == name]
+    if not cases:
+        bodies = sorted({c["model"].split("+")[0] for c in index["cases"] if c["model"].startswith("body:")})
+        raise UsageError(f"--body {args.body}: the reference set has no case of {name}; bodies with cases: "
+                         f"{', '.join(bodies) or 'none'}")
+    return cases
 
 
 def _prove(args, directory, say) -> int:

@@ -93,6 +93,8 @@ def parser() -> argparse.ArgumentParser:
     ref.add_argument("--budget", default=None, metavar="SECONDS",
                      help="for --prove: wall-clock seconds per case for this run (default: none); the next run resumes")
     ref.add_argument("--case", action="append", metavar="NAME", help="only this case (repeatable)")
+    ref.add_argument("--body", default=None, metavar="NAME",
+                     help="for --check: every case of this body (a shipped body's name, body:NAME or its file)")
     ref.add_argument("--jobs", default=None, help="for --make: processes (default 2)")
     ref.add_argument("--dir", default=None, help="the set's folder (default: reports/reference)")
     ref.add_argument("--format", choices=("json", "text", "csv"), default=None,
