@@ -210,7 +210,7 @@ def _quantity_functions(name: str):
 
     v_P is the velocity of the geometric contact point over the floor: v_C plus the rate of
     the horizontal part of r_P = CP (thetadot = 0 on the family).  w2 is the stability
-    coefficient of the reduced Jacobian (verify/studies/thresholds.py), valid on steady motions.
+    coefficient of the reduced Jacobian (verify/studies/thresholds/linear.py), valid on steady motions.
     """
     from models.symbols import omega_body, time_derivative, to_inertial
 
