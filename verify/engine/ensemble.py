@@ -252,6 +252,12 @@ def _by_name(name: str, form: str, batch_size: int, cooldown: float, stop: bool,
     return ensemble(resolve(name), form, batch_size, cooldown, stop, friction)
 
 
+def clear() -> None:
+    """Forget every ensemble and compiled lane system (tests that patch what a lane system is built from)."""
+    _by_name.cache_clear()
+    compile_lanes.cache_clear()
+
+
 @lru_cache(maxsize=None)
 def resolve(name: str) -> Model:
     """The model called ``name``, resolved once per process (``get_model``; a body file's model is derived

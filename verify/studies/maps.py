@@ -49,6 +49,8 @@ from typing import Optional
 
 import numpy as np
 
+from models import BODY_PREFIX
+
 from . import thresholds
 from ..engine.ensemble import resolve
 from ..engine.lanes import simd_width
@@ -137,6 +139,10 @@ class StabilityMap:
 # --- input -------------------------------------------------------------------------------
 
 def _check_motion(model: str, motion: str) -> None:
+    if model.startswith(BODY_PREFIX):
+        raise ValueError(f"model {model!r}: a stability map starts on a steady motion, and a body file has no "
+                         f"steady-motion study (models.steady.MOTIONS); allowed: {', '.join(MOTIONS)} (a body file "
+                         "sweeps with explicit starts: python -m verify sweep)")
     if model not in MOTIONS:
         raise ValueError(f"unknown model {model!r} for a stability map; allowed: {', '.join(MOTIONS)}")
     if motion not in MOTIONS[model]:
