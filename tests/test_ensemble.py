@@ -197,3 +197,18 @@ def test_no_heyoka_outside_the_engine_room():
     found = [str(p.relative_to(ROOT)) for p in sorted((ROOT / "verify").rglob("*.py")) if _imports_heyoka(p)]
     assert found, "the scan found no import at all: it would pass whatever the tree holds"
     assert [f for f in found if not f.startswith(HEYOKA_ALLOWED)] == []
+
+
+def test_a_bare_lane_system_is_the_yardstick_not_a_route():
+    """compile_lanes(bare=True): the same equations without the alive factor, only the events asked for,
+    parameters only as far as the system reads them; a choice of events is refused for the suite's lanes."""
+    from verify.engine.lanes import compile_lanes
+
+    model = _disk().model
+    bare = compile_lanes(model, "full", WIDTH, 5.0, bare=True, events=("contact_lost",))
+    assert bare.events == ("contact_lost",) and bare.layout.names == ("k", "g")
+    alive = f"p{_disk().lanes.layout['alive']}"
+    assert all(alive in str(rhs) for _, rhs in _disk().lanes.template.sys)  # the suite's lanes freeze
+    assert not any(alive in str(rhs) for _, rhs in bare.template.sys)
+    with pytest.raises(ValueError, match="a choice of events is for a bare baseline"):
+        compile_lanes(model, "full", WIDTH, 5.0, events=("contact_lost",))

@@ -138,7 +138,7 @@ class LaneSystem:
 
 @lru_cache(maxsize=None)
 def compile_lanes(model: Model, form: str, batch_size: int, cooldown: float, stop: bool = False,
-                  friction: bool = False) -> LaneSystem:
+                  friction: bool = False, bare: bool = False, events: tuple = None) -> LaneSystem:
     """The lane system of ``model`` (compiled once per process and settings; heyoka caches the code on disk).
 
     Parameters
@@ -162,19 +162,28 @@ def compile_lanes(model: Model, form: str, batch_size: int, cooldown: float, sto
     if form == "reduced" and (stop or friction):
         raise ValueError("the reduced lane system has no theta_stop or slips event; allowed: form='full'")
     build = _full if form == "full" else _reduced
-    states, system, events, names, park, between, record, rest = build(model, stop, friction)
+    states, system, compiled, names, park, between, record, rest = build(model, stop, friction, bare)
+    if events is not None:
+        if not bare:
+            raise ValueError("a choice of events is for a bare baseline: every guard runs on the suite's lanes")
+        compiled = [e for e in compiled if e[0] in events]
+    events = compiled
+    if bare:  # heyoka wants exactly as many parameters as the highest par[i] read: the records may go unread
+        exprs = [rhs for _, rhs in system] + [ex for _, ex, _ in events]
+        names = names[: 1 + max([int(str(p)[1:]) for p in hy.get_params(exprs)], default=-1)]
+        park, between, record = (), None, ()  # nothing frozen, nothing parked
     layout = LaneLayout(names)
-    where = batch.Lanes(layout["alive"], layout["reason"], layout["t_stop"])
+    where = batch.Lanes(*(layout.names.index(k) if k in layout else -1 for k in ("alive", "reason", "t_stop")))
     park_rows = tuple((states.index(k), v) for k, v in park)
     between_rows = None if between is None else (states.index(between[0]), layout[between[1]], layout[between[2]])
     record_rows = tuple((states.index(k), layout[p]) for k, p in record)
     template = batch.batch_system(system, events, where, len(names), batch_size, cooldown, rest,
                                   [float(sp.N(p.default)) for p in model.parameters], park=park_rows,
-                                  park_between=between_rows, record=record_rows)
+                                  park_between=between_rows, record=record_rows, freezing=not bare)
     return LaneSystem(model, form, states, tuple(e[0] for e in events), layout, template, cooldown)
 
 
-def _full(model: Model, stop: bool, friction: bool):
+def _full(model: Model, stop: bool, friction: bool, bare: bool):
     """The eight states (and W), each right-hand side times ``alive``; the sweeps' events."""
     variables = list(hy.make_vars(*STATE_NAMES))
     mapping = dict(zip(STATE, variables))
@@ -185,11 +194,12 @@ def _full(model: Model, stop: bool, friction: bool):
     mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
     alive, last = hy.par[names.index("alive")], hy.par[names.index(last_name)]
     unscaled = [to_heyoka(r, mapping) for _, r in model.rhs()]
-    system = [(v, r * alive) for v, r in zip(variables, unscaled)]
+    system = [(v, r if bare else r * alive) for v, r in zip(variables, unscaled)]
     states = STATE_NAMES
     if model.dissipation is not None:
         W = hy.make_vars("W")
-        system.append((W, to_heyoka(model.dissipation, mapping) * alive))
+        work = to_heyoka(model.dissipation, mapping)
+        system.append((W, work if bare else work * alive))
         variables.append(W)
         states = STATE_NAMES + ("W",)
     th = variables[0]
@@ -223,7 +233,7 @@ def _full(model: Model, stop: bool, friction: bool):
     return states, system, events, names, park, None, record, rest
 
 
-def _reduced(model: Model, stop: bool, friction: bool):
+def _reduced(model: Model, stop: bool, friction: bool, bare: bool):
     """theta, thetadot, phidot, psidot, each right-hand side times ``alive``; bounds per lane."""
     variables = hy.make_vars(*REDUCED_STATES)
     mapping = dict(zip((theta, thetadot, phidot, psidot), variables))
@@ -237,7 +247,7 @@ def _reduced(model: Model, stop: bool, friction: bool):
         if extra:
             raise ValueError(f"model {model.name!r}: the reduced system depends on {sorted(map(str, extra))}")
     unscaled = [to_heyoka(r, mapping) for r in rhs]
-    system = [(v, r * alive) for v, r in zip(variables, unscaled)]
+    system = [(v, r if bare else r * alive) for v, r in zip(variables, unscaled)]
     th = variables[0]
     events = [("below", th - lower, hy.event_direction.negative), ("above", th - upper, hy.event_direction.positive)]
     if model.normal_force is not None:

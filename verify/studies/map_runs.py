@@ -1,6 +1,7 @@
-"""The runs of a stability map: the reduced system compiled for heyoka's batch mode, every lane's
-start and parameters, and the ensemble propagation reduced to each run's largest deviation
-(:mod:`verify.studies.maps` describes the protocol, how it runs and why it is deterministic).
+"""The runs of a stability map on the batch road: the map's :class:`verify.engine.ensemble.Ensemble` (the
+reduced lane system), every lane's start and parameters laid out by name, and the ensemble propagation
+reduced to each run's largest deviation (:mod:`verify.studies.maps` describes the protocol, how it runs
+and why it is deterministic).  No heyoka here: the engine room builds and runs the integrators.
 """
 from __future__ import annotations
 

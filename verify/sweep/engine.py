@@ -1,11 +1,12 @@
-"""Run one chunk of a sweep on the batch engine (:mod:`verify.engine.batch`), then its rows.
+"""Run one chunk of a sweep through the batch road (:class:`verify.engine.ensemble.Ensemble`), then its rows.
 
 The full state (theta, phi, psi, thetadot, phidot, psidot, x, y), plus the work W of a
-dissipative term when the model has one, is integrated in double by
-:func:`verify.engine.batch.propagate_grid`: SIMD lanes within a batch integrator, batches on
-threads.  Parameters are runtime ``par[i]`` (the model's, in model order, then the per-lane
-bookkeeping: reason, t_stop, alive, and theta_stop when the spec has a ``[stop]``), so one
-compiled integrator serves every point of every sweep of the model.
+dissipative term when the model has one, is integrated in double by the spec's ensemble
+(:func:`ensemble_of`): SIMD lanes within a batch integrator, batches on threads.  Parameters are
+runtime ``par[i]`` laid out by name (:class:`verify.engine.lanes.LaneLayout`: the model's, then the
+per-lane records alive, reason, t_stop, and theta_stop with a ``[stop]`` or else theta_max), so one
+compiled integrator serves every point of every sweep of the model; the model is resolved once
+per process (one ``get_model``), g for the step cap is the model's own.
 
 Terminal events freeze their own lane (:class:`verify.engine.batch.Freeze`): the lane is parked
 in the middle of the model's domain (thetadot = psidot = 0, phidot = 1: a rocking rate of
@@ -16,7 +17,7 @@ and the loss of contact (N = 0) where the model has a contact.
 
 With a friction coefficient (``[params] friction`` or an axis) the system has one more event,
 ``slips``, built from the single engine's own function (:func:`verify.engine.compile.slip_event_function`)
-on the same unscaled accelerations as ``contact_lost``, the coefficient in a per-lane parameter;
+on the same unscaled accelerations as ``contact_lost``, the coefficient in the lane parameter ``friction``;
 the event's callback keeps theta at the event time in another before it parks the lane.  A run
 records ``slipped`` (1 when ``slips`` stopped it, else 0), ``t_slip`` and ``theta_at_slip`` (NaN
 when it did not slip); ``max_friction_required_on_grid`` is the largest mu_req = |F_h|/N on the
