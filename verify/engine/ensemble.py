@@ -84,7 +84,8 @@ class Ensemble:
         return np.stack([np.broadcast_to(r, (width,)) for r in rows]) if rows else np.zeros((0, width))
 
     def model_values(self, pars: np.ndarray) -> dict:
-        """name -> row of the model's parameters among ``pars`` (lane or model rows)."""
+        """name -> row of the model's parameters from rows in model order (:meth:`model_columns`'s layout);
+        lane parameters are read by name with :meth:`record`."""
         return {name: pars[i] for i, name in enumerate(self.model.parameter_names)}
 
     def default(self, name: str) -> float:
