@@ -108,10 +108,14 @@ def sweep_case(spec, chunks, bs):
 
 
 def map_case(bs):
-    _, system, _, n_model = maps.reduced_system("disk")
+    from verify.engine.lanes import compile_lanes
+
     rates, tilts = np.linspace(14.0, 42.0, 50), np.logspace(-6, -1, 40)
     runs = maps.prepare_runs("disk", "diameter-spin", rates, tilts, 10.0, {}, maps.CAP, False, bs)
-    pars = np.concatenate([runs.pars[:n_model], np.ones((1, runs.pars.shape[1]))])
+    ens = runs.ensemble
+    bare = compile_lanes(ens.model, "reduced", bs, ens.cooldown, bare=True, events=())  # no events, no alive
+    system = bare.template.sys
+    pars = np.stack([ens.record(runs.pars, name) for name in bare.layout.names])
 
     def engine():
         return maps.stability_map("disk", "diameter-spin", rates=rates, tilts=tilts, batch_size=bs,

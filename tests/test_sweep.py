@@ -308,10 +308,10 @@ def test_energy_drift_column_sees_unaccounted_work(tmp_path, monkeypatch):
 
     reduce = engine._reduce
 
-    def without_work(spec, sysm, indices, grid, samples, *rest):
+    def without_work(spec, ens, indices, grid, samples, *rest):
         samples = samples.copy()  # (grid, states, lanes)
-        samples[:, 8] = 0.0
-        return reduce(spec, sysm, indices, grid, samples, *rest)
+        samples[:, ens.lanes.row("W")] = 0.0
+        return reduce(spec, ens, indices, grid, samples, *rest)
 
     monkeypatch.setattr(engine, "_reduce", without_work)
     spec = short_air_drag_sweep(tmp_path)

@@ -237,7 +237,9 @@ def test_a_missed_event_is_a_failed_row_not_data(tmp_path, monkeypatch):
     run_sweep(spec, threads=1, progress=False)
     with Store(spec) as store:
         assert [r["outcome"] for r in store.rows()] == ["theta_stop", "theta_stop"]
-    monkeypatch.setattr(engine._Freeze, "__call__", lambda self, ta, d_sgn, lane: True)
+    from verify.engine.batch import Freeze
+
+    monkeypatch.setattr(Freeze, "__call__", lambda self, ta, d_sgn, lane: True)
     missed = parse(text, store=str(tmp_path / "missed.sqlite"))
     run_sweep(missed, threads=1, progress=False)
     with Store(missed) as store:

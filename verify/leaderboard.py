@@ -202,9 +202,9 @@ def _hybrid_slides(sol) -> dict:
 def _suite_version() -> str:
     from importlib.metadata import version
 
-    import heyoka
+    from .precision import heyoka_version
 
-    return f"{version('rolling-verify')}, heyoka {heyoka.__version__}"
+    return f"{version('rolling-verify')}, heyoka {heyoka_version()}"
 
 
 def words(record: dict) -> str:

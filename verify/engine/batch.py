@@ -96,8 +96,13 @@ class Freeze:
         return True
 
 
+def go_on(ta, d_sgn, lane) -> bool:
+    """Terminal-event callback of a bare baseline (verify.bench): nothing recorded, the batch runs on."""
+    return True
+
+
 def batch_system(system, events, lanes: Lanes, n_pars: int, batch_size: int, cooldown: float,
-                 state, default_pars, park=(), park_between=None, record=()):
+                 state, default_pars, park=(), park_between=None, record=(), freezing: bool = True):
     """A ``taylor_adaptive_batch`` template of ``system`` with freezing terminal events.
 
     Parameters
@@ -121,14 +126,18 @@ def batch_system(system, events, lanes: Lanes, n_pars: int, batch_size: int, coo
     park, park_between, record
         Where a frozen lane is parked, and what of its state at the event is kept (:class:`Freeze`);
         a record's parameter must sit below one that is read, as ``reason`` and ``t_stop`` do.
+    freezing : bool
+        False: the events' callback is :func:`go_on` (a bare baseline's: the same events, nothing frozen).
     """
-    t_events = [hy.t_event_batch(ex, direction=d, callback=Freeze(lanes, i + 1, park, park_between, record),
-                                 cooldown=cooldown) for i, (_, ex, d) in enumerate(events)]
+    t_events = [hy.t_event_batch(ex, direction=d, cooldown=cooldown,
+                                 callback=Freeze(lanes, i + 1, park, park_between, record) if freezing else go_on)
+                for i, (_, ex, d) in enumerate(events)]
     lanes_state = np.repeat(np.asarray(state, float)[:, None], batch_size, axis=1)
     pars = np.zeros((n_pars, batch_size))
     pars[: len(default_pars)] = np.asarray(default_pars, float)[:, None]
-    pars[lanes.alive] = 1.0
-    return hy.taylor_adaptive_batch(list(system), lanes_state, pars=pars, t_events=t_events or None)
+    if freezing:
+        pars[lanes.alive] = 1.0
+    return hy.taylor_adaptive_batch(list(system), lanes_state, pars=pars, t_events=t_events)
 
 
 def pad_lanes(n: int, batch_size: int) -> np.ndarray:

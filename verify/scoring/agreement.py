@@ -399,7 +399,8 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
         source = "stored grid"
     else:
         try:  # the quad re-integration needs the full suite; a light install (numpy, mpmath) scores grid times only
-            import heyoka  # noqa: F401
+            from ..precision import parse_precision  # imports heyoka first: the engine's precisions
+
             import sympy as sp
         except ImportError as err:
             off = next(float(v) for v in t if float(v) not in index)
@@ -407,7 +408,6 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
                              f"{err.name} this install cannot re-integrate the case at other times: give the grid "
                              f"times (listed in the case file, key 'grid') or install the full suite") from None
         from ..engine.single import solve
-        from ..precision import parse_precision
 
         quad = parse_precision("quad")
         params = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}

@@ -391,9 +391,9 @@ def transported_point(law: str, th: float, pars: list) -> dict:
     from verify.engine.single import through_grid
 
     from .dissipation import THETA0
-    from .dissipation.prediction import _transport_system
+    from .dissipation.prediction import transport_system
 
-    run = through_grid(("dissipation transport", law), _transport_system(law), [0.0, 0.0, 0.0], pars,
+    run = through_grid(("dissipation transport", law), transport_system(law), [0.0, 0.0, 0.0], pars,
                        [float(THETA0), th])
     if not run.reached:
         raise RuntimeError(f"the transported drift stopped before theta = {th} ({run.outcome})")

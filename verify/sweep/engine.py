@@ -1,11 +1,12 @@
-"""Run one chunk of a sweep on the batch engine (:mod:`verify.engine.batch`), then its rows.
+"""Run one chunk of a sweep through the batch road (:class:`verify.engine.ensemble.Ensemble`), then its rows.
 
 The full state (theta, phi, psi, thetadot, phidot, psidot, x, y), plus the work W of a
-dissipative term when the model has one, is integrated in double by
-:func:`verify.engine.batch.propagate_grid`: SIMD lanes within a batch integrator, batches on
-threads.  Parameters are runtime ``par[i]`` (the model's, in model order, then the per-lane
-bookkeeping: reason, t_stop, alive, and theta_stop when the spec has a ``[stop]``), so one
-compiled integrator serves every point of every sweep of the model.
+dissipative term when the model has one, is integrated in double by the spec's ensemble
+(:func:`ensemble_of`): SIMD lanes within a batch integrator, batches on threads.  Parameters are
+runtime ``par[i]`` laid out by name (:class:`verify.engine.lanes.LaneLayout`: the model's, then the
+per-lane records alive, reason, t_stop, and theta_stop with a ``[stop]`` or else theta_max), so one
+compiled integrator serves every point of every sweep of the model; the model is resolved once
+per process (one ``get_model``), g for the step cap is the model's own.
 
 Terminal events freeze their own lane (:class:`verify.engine.batch.Freeze`): the lane is parked
 in the middle of the model's domain (thetadot = psidot = 0, phidot = 1: a rocking rate of
@@ -16,7 +17,7 @@ and the loss of contact (N = 0) where the model has a contact.
 
 With a friction coefficient (``[params] friction`` or an axis) the system has one more event,
 ``slips``, built from the single engine's own function (:func:`verify.engine.compile.slip_event_function`)
-on the same unscaled accelerations as ``contact_lost``, the coefficient in a per-lane parameter;
+on the same unscaled accelerations as ``contact_lost``, the coefficient in the lane parameter ``friction``;
 the event's callback keeps theta at the event time in another before it parks the lane.  A run
 records ``slipped`` (1 when ``slips`` stopped it, else 0), ``t_slip`` and ``theta_at_slip`` (NaN
 when it did not slip); ``max_friction_required_on_grid`` is the largest mu_req = |F_h|/N on the
@@ -64,35 +65,23 @@ lane is told apart from its neighbours.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
-import heyoka as hy
 import mpmath
 import numpy as np
-import sympy as sp
 
-from models import get_model
-from models.common import PAPER_G
 from models.ring_dissipation import annulus_inertia
-from models.symbols import ACCELERATIONS, STATE, STATE_NAMES, phidot, psidot, theta
+from models.symbols import STATE_NAMES
 
 from ..circling import circling, theta_maxima
 from ..engine import batch, validation
-from ..engine.batch import Freeze as _Freeze  # noqa: F401  (patched by a negative control of the guard)
-from ..engine.compile import FRICTION, contact_event, friction_function, slip_event_function, symbol_map, to_heyoka
-from ..engine.failures import SLIP_SLACK_EPS
-from ..engine.single import COLLAPSE_FACTOR
+from ..engine.ensemble import Ensemble, ensemble, g_of, resolve, segments_of
 from ..engine.lanes import simd_width
+from ..engine.single import COLLAPSE_FACTOR
 from ..precision import parse_precision
 from .spec import FRICTION as FRICTION_AXIS
 from .spec import SENSE_KEYS, InvalidPoint, SweepSpec
 
-#: Per-lane parameters after the model's: the last is [stop] theta_below, or without a [stop] the domain's upper end
-EXTRA = ("alive", "reason", "t_stop", "theta_stop or theta_max")
-#: With a friction coefficient, two more: theta where an event froze the lane (a record, read by no expression:
-#: it sits below the coefficient, which the event ``slips`` reads), then the coefficient
-FRICTION_EXTRA = ("theta_at_stop", "friction")
 WINDOWS = 20  # a run without nutation is read over 20 equal windows
 NUTATIONS_PER_WINDOW = 12  # otherwise over windows of 12 nutations (see orbit_windows)
 NUTATION_FLOOR = 1e-9  # rad: a theta spread below this is no nutation
@@ -102,93 +91,11 @@ REDUCE_GROUP = 16
 TH, PH, PS, THD, PHD, PSD, X, Y = range(8)
 
 
-@dataclass(frozen=True)
-class System:
-    """A model's batch system with freezing and its reductions, compiled once per process."""
-
-    model: str
-    events: tuple  # names of the compiled events, reason code = index + 1
-    n_model_pars: int
-    n_states: int  # 8, or 9 with W
-    lanes: batch.Lanes  # where alive, reason and t_stop are among a lane's parameters
-    n_pars: int  # per lane: the model's, reason, t_stop, alive (and theta_stop with [stop])
-    template: object  # taylor_adaptive_batch
-    diagnostics: batch.ScalarTwin  # (omega_z, the energy's additive terms...) of the state
-    normal_force: object  # batch.ScalarTwin of N/(Mg), or None (no contact)
-    theta_at_stop: int = None  # the parameter holding theta at the event that froze the lane (with a coefficient)
-    friction: int = None  # the parameter holding the friction coefficient (with one)
-
-
-@lru_cache(maxsize=None)
-def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False, friction: bool = False) -> System:
-    """The batch system of a model; the ``theta_stop`` event only with ``stop`` (a spec's [stop]), the
-    ``slips`` event only with ``friction`` (a spec's coefficient), each where the spec asks for it: an
-    event costs on every step."""
-    model = get_model(model_name)
-    variables = list(hy.make_vars(*STATE_NAMES))
-    mapping = dict(zip(STATE, variables))
-    n = len(model.parameters)
-    mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    lanes = batch.Lanes(alive=n, reason=n + 1, t_stop=n + 2)
-    alive, last = hy.par[n], hy.par[n + 3]
-    unscaled = [to_heyoka(r, mapping) for _, r in model.rhs()]
-    rhs = [r * alive for r in unscaled]
-    sys_ = list(zip(variables, rhs))
-    if model.dissipation is not None:
-        W = hy.make_vars("W")
-        sys_.append((W, to_heyoka(model.dissipation, mapping) * alive))
-        variables.append(W)
-    th = variables[0]
-    dom = model.domain
-    lo, hi = float(dom.theta_min), float(dom.theta_max)
-    if stop:
-        exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - hi, hy.event_direction.positive),
-                 ("theta_stop", th - last, hy.event_direction.negative)]
-    else:  # no theta_stop event; the upper end is read from par[n + 3]: heyoka sizes the parameters by
-        # the highest one read, and the records reason and t_stop below it must exist
-        exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - last, hy.event_direction.positive)]
-    normal = None
-    if model.normal_force is not None:
-        # the event reads the system's own accelerations (rows thetadot, phidot, psidot) so that
-        # heyoka's decomposition computes them once (verify.engine.compile.contact_event)
-        exprs.append(("contact_lost", contact_event(model, mapping, [unscaled[i] for i in (THD, PHD, PSD)]),
-                      hy.event_direction.negative))
-        normal = batch.ScalarTwin(validation.normal_force_function(model_name), hy.cfunc(
-            [to_heyoka(model.normal_force, symbol_map(model, variables[:8]))], variables[:8], batch_size=1))
-    record = ()
-    if friction:
-        # the single engine's event function (verify.engine.compile.slip_event_function), on the same
-        # unscaled accelerations as contact_lost; last, so the other events keep their codes
-        at_stop, coefficient = n + len(EXTRA), n + len(EXTRA) + 1
-        slip_map = {**mapping, FRICTION: hy.par[coefficient],
-                    **dict(zip(ACCELERATIONS, [unscaled[i] for i in (THD, PHD, PSD)]))}
-        exprs.append(("slips", to_heyoka(slip_event_function(model), slip_map), hy.event_direction.positive))
-        record = ((TH, at_stop),)
-    safe = 0.5 * (lo + hi)
-    # a frozen lane is parked mid-domain with phidot = 1, not 0: |omega_perp| terms (sqrt) have no
-    # Taylor series at 0
-    park = ((TH, safe), (THD, 0.0), (PSD, 0.0), (PHD, 1.0))
-    state = np.zeros(len(variables))
-    state[TH] = safe
-    n_pars = n + len(EXTRA) + (len(FRICTION_EXTRA) if friction else 0)
-    template = batch.batch_system(sys_, exprs, lanes, n_pars, batch_size, cooldown, state,
-                                  [float(sp.N(p.default)) for p in model.parameters], park=park, record=record)
-    omega_z = phidot + psidot * sp.cos(theta)
-    fmap = dict(zip(STATE, variables[:8]))
-    fmap.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    terms = sp.Add.make_args(sp.expand(model.energy))  # the drift is judged against the sum of their magnitudes
-    diag = batch.ScalarTwin.of([to_heyoka(omega_z, fmap)] + [to_heyoka(t, fmap) for t in terms], variables[:8])
-    return System(model_name, tuple(e[0] for e in exprs), n, len(variables), lanes, n_pars, template, diag, normal,
-                  n + len(EXTRA) if friction else None, n + len(EXTRA) + 1 if friction else None)
-
-
-@lru_cache(maxsize=None)
-def friction_twin(model_name: str) -> batch.ScalarTwin:
-    """(N/(Mg), mu_req = |F_h|/N) of a rolling model as a :class:`verify.engine.batch.ScalarTwin` (the
-    cfunc ``solve`` reads ``friction_required`` with, and its scalar build), in double."""
-    model, dbl = get_model(model_name), parse_precision("double")
-    return batch.ScalarTwin(friction_function(model, dbl).function, friction_function(model, dbl, 1).function)
-
+def ensemble_of(spec: SweepSpec, batch_size: int) -> Ensemble:
+    """The spec's :class:`verify.engine.ensemble.Ensemble`: the full form, the ``theta_stop`` event only with a
+    ``[stop]``, ``slips`` only with a friction coefficient (an event costs on every step), a cooldown
+    longer than the run; one per process and settings, so the model is resolved once."""
+    return ensemble(spec.model, "full", batch_size, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None, spec.slips)
 
 
 # --- inputs of a chunk ---------------------------------------------------------------------------
@@ -206,14 +113,6 @@ def friction_column(spec: SweepSpec, indices):
     return spec.columns(idx)[FRICTION_AXIS]
 
 
-def friction_needed(model_name: str, states, pars) -> np.ndarray:
-    """mu_req = |F_h|/N at each column of ``states`` (8, n) with per-column ``pars``; NaN where N <= 0."""
-    fn = friction_function(get_model(model_name), parse_precision("double"))
-    kwargs = {"pars": np.ascontiguousarray(pars[: fn.n_pars], dtype=float)} if fn.n_pars else {}
-    normal, need = fn.function(np.ascontiguousarray(states[:8], dtype=float), **kwargs)
-    return np.where(normal > 0, need, np.nan)
-
-
 def lane_inputs(spec: SweepSpec, indices) -> tuple:
     """(states (8, n), model parameters (n_pars, n), theta_ref (n)) of the points ``indices``.
 
@@ -221,19 +120,18 @@ def lane_inputs(spec: SweepSpec, indices) -> tuple:
     Raises :class:`InvalidPoint` for the first point whose parameters are invalid (or whose
     steady motion does not exist); the start as a whole is checked by :func:`point_problems`.
     """
-    states, pars, refs, problems = _inputs(spec, indices)
+    states, pars, refs, problems = _inputs(spec, indices, ensemble_of(spec, simd_width()).model)
     if problems:
         raise _refusal(spec, np.asarray(indices, dtype=np.int64), problems[0])
     return states, pars, refs
 
 
-def _inputs(spec: SweepSpec, indices) -> tuple:
+def _inputs(spec: SweepSpec, indices, model) -> tuple:
     """lane_inputs without raising: (states, pars, refs, [(column, reason, message)]) -- the
     columns of points with bad parameters are NaN.  Vectorised over the points: the parameters
     are resolved once per distinct combination, the steady motion once per distinct rate."""
     idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)
     n = len(idx)
-    model = get_model(spec.model)
     cols = spec.columns(idx)
     problems = []
     # parameters: [params], then the parameter axes (and w), once per distinct combination
@@ -297,8 +195,8 @@ def _inputs(spec: SweepSpec, indices) -> tuple:
 
 @lru_cache(maxsize=4096)
 def _resolved(model_name: str, geometry, items: tuple) -> tuple:
-    """(parameter values in model order, the parameters as decimal strings) of one combination."""
-    model = get_model(model_name)
+    """(parameter values in model order, by name, and the parameters as decimal strings) of one combination."""
+    model = resolve(model_name)
     values = dict(items)
     values.pop("tilt", None)
     if geometry == "annulus":
@@ -309,7 +207,7 @@ def _resolved(model_name: str, geometry, items: tuple) -> tuple:
             values["w"] = ww
     text = {k: repr(float(v)) for k, v in values.items()}
     resolved = validation.parameters(model, text, parse_precision("double"))
-    return tuple(float(v) for v in resolved.values()), tuple(text.items())
+    return tuple(float(resolved[name]) for name in model.parameter_names), tuple(text.items())
 
 
 @lru_cache(maxsize=4096)
@@ -328,23 +226,24 @@ def point_problems(spec: SweepSpec, indices) -> list:
     domain, the model's constraints, N > 0), plus theta above ``[stop] theta_below``.
     """
     idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)
-    return _problems(spec, idx, *_inputs(spec, idx))
+    ens = ensemble_of(spec, simd_width())
+    return _problems(spec, ens, idx, *_inputs(spec, idx, ens.model))
 
 
-def _problems(spec: SweepSpec, idx, states, pars, refs, problems) -> list:
-    model = get_model(spec.model)
+def _problems(spec: SweepSpec, ens: Ensemble, idx, states, pars, refs, problems) -> list:
+    model = ens.model
     problems = list(problems)
     good = ~np.isnan(pars).any(axis=0) if len(model.parameters) else np.ones(len(idx), bool)
     cols = np.flatnonzero(good)
     if len(cols):
         sub, psub = states[:, cols], pars[:, cols]
-        normal = validation.normal_force_columns(spec.model, sub, psub)
+        normal = ens.normal_force_columns(sub, psub)
         found = validation.start_problems(model, sub, normal)
         for j, reason, message in found:
             problems.append((int(cols[j]), reason, message))
         mu = friction_column(spec, idx)
         if mu is not None:  # as solve refuses a start that already needs the coefficient (validation._slip_problem)
-            need = friction_needed(spec.model, sub, psub)
+            need = ens.friction_needed(sub, psub)
             bad = {j for j, _, _ in found}
             for j in np.flatnonzero(~(need < mu[cols])):
                 if int(j) not in bad:
@@ -389,22 +288,24 @@ def validate_points(spec: SweepSpec, block: int = VALIDATION_BLOCK) -> None:
             raise _invalid(spec, index, reason, message)
 
 
-def fastest_rate(spec: SweepSpec) -> float:
-    """The largest initial rate over the whole sweep (or sqrt(g)): the step cap is 1 / it, as in solve()."""
+def fastest_rate(spec: SweepSpec, ens: Ensemble = None) -> float:
+    """The largest initial rate over the whole sweep, or sqrt(g) with the model's own largest g: the step
+    cap is 1 / it, as in solve() (over the sweep, not the chunk, so that a row does not depend on the chunking)."""
+    ens = ens or ensemble_of(spec, simd_width())
     rates = [spec.start.get(n, 0.0) for n in ("thetadot", "phidot", "psidot")]
     for a in spec.axes:
         if a.name in ("thetadot", "phidot", "psidot"):  # a monotone axis: its ends are its extremes
             rates += list(a.values.extremes)
-    g = spec.params.get("g", float(PAPER_G))
+    g = g_of(ens.model, spec.params)
     for a in spec.axes:
         if a.name == "g":
             g = a.values.extremes[1]
-    return batch.fastest_rate(rates, g)
+    return ens.fastest_rate(rates, g)
 
 
-def step_budget(spec: SweepSpec) -> int:
+def step_budget(spec: SweepSpec, ens: Ensemble = None) -> int:
     """The most steps a run may take: COLLAPSE_FACTOR (t_end x the fastest rate) (see the module docstring)."""
-    return int(COLLAPSE_FACTOR * spec.t_end * fastest_rate(spec)) + COLLAPSE_FACTOR
+    return int(COLLAPSE_FACTOR * spec.t_end * fastest_rate(spec, ens)) + COLLAPSE_FACTOR
 
 
 # --- a chunk ---------------------------------------------------------------------------------------
@@ -415,47 +316,47 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     if not indices:
         raise ValueError(f"chunk {chunk} is outside the sweep's {spec.n_chunks} chunks")
     bs = batch_size or simd_width()
-    sysm = system(spec.model, bs, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None, spec.slips)
+    ens = ensemble_of(spec, bs)
     idx = np.asarray(indices, dtype=np.int64)
-    inputs = _inputs(spec, idx)
-    problems = _problems(spec, idx, *inputs)  # validated before the store was made; a worker checks again
+    inputs = _inputs(spec, idx, ens.model)
+    problems = _problems(spec, ens, idx, *inputs)  # validated before the store was made; a worker checks again
     if problems:
         raise _invalid(spec, *problems[0])
     states, model_pars, refs, _ = inputs
-    n, m = len(indices), sysm.n_model_pars
+    n = len(indices)
+    lanes = ens.lanes
     pad = batch.pad_lanes(n, bs)
-    lane_states = np.zeros((sysm.n_states, len(pad)))
+    lane_states = np.zeros((len(lanes.states), len(pad)))
     lane_states[:8] = states[:, pad]
-    lane_pars = np.zeros((sysm.n_pars, len(pad)))
-    lane_pars[:m] = model_pars[:, pad]
-    lane_pars[sysm.lanes.alive] = 1.0
-    lane_pars[sysm.lanes.t_stop] = np.nan
-    stop = spec.theta_stop
-    lane_pars[m + 3] = stop if stop is not None else float(get_model(spec.model).domain.theta_max)
+    settings = {**ens.model_values(model_pars[:, pad])}
+    if spec.theta_stop is not None:
+        settings["theta_stop"] = spec.theta_stop
+    else:
+        settings["theta_max"] = float(ens.model.domain.theta_max)
     if spec.slips:
-        lane_pars[sysm.theta_at_stop] = np.nan
-        lane_pars[sysm.friction] = friction_column(spec, idx)[pad]
+        settings["friction"] = friction_column(spec, idx)[pad]
+    lane_pars = ens.parameters(len(pad), settings)
     grid = np.linspace(0.0, spec.t_end, spec.samples)
-    options = {"max_delta_t": batch.step_cap([fastest_rate(spec)]), "max_steps": step_budget(spec)}
+    options = {"max_delta_t": 1.0 / fastest_rate(spec, ens), "max_steps": step_budget(spec, ens)}
 
-    (batches, messages), = batch.propagate_grid(sysm.template, lane_states, lane_pars, grid, threads, **options)
+    (batches, messages), = ens.propagate(lane_states, lane_pars, grid, threads, **options)
     rows = []
     for first in range(0, len(batches), REDUCE_GROUP):  # a group at a time: memory stays near the output's
         group = batches[first:first + REDUCE_GROUP]
-        lanes = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
-        samples = np.empty((len(grid), sysm.n_states, len(lanes)))
-        final_pars = np.empty((lane_pars.shape[0], len(lanes)))
+        cols_group = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
+        samples = np.empty((len(grid), len(lanes.states), len(cols_group)))
+        final_pars = np.empty((lane_pars.shape[0], len(cols_group)))
         failed = {}  # lane -> (outcome, time)
         for b in group:
             cols = np.arange(b.columns.start, min(b.columns.stop, n))
-            at = cols - lanes[0]
+            at = cols - cols_group[0]
             if not messages and _batch_ok(b, len(grid)):
                 samples[:, :, at] = b.output[:, :, : len(cols)]
                 final_pars[:, at] = b.local.pars[:, : len(cols)]
                 continue
             for k, j in zip(cols, at):  # again, each lane alone (module docstring)
-                one, warned = batch.alone(sysm.template, grid, lane_states[:, k], lane_pars[:, k], **options)
-                failure = batch.lane_failure(one, 0, sysm.lanes, warned)
+                one, warned = ens.alone(grid, lane_states[:, k], lane_pars[:, k], **options)
+                failure = ens.failure(one, 0, warned)
                 if failure is not None:
                     failed[j] = failure
                     continue
@@ -463,11 +364,11 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
                 final_pars[:, j] = one.local.pars[:, 0]
         for i in range(first, first + len(group)):
             batches[i] = None  # its output is copied: let it go
-        good = np.array([j not in failed for j in range(len(lanes))])
-        reduced = iter(_reduce(spec, sysm, idx[lanes[good]], grid, samples[:, :, good], final_pars[:, good],
-                               model_pars[:, lanes[good]], refs[lanes[good]]))
-        rows += [_failed_row(spec, indices[lanes[j]], *failed[j]) if j in failed else next(reduced)
-                 for j in range(len(lanes))]
+        good = np.array([j not in failed for j in range(len(cols_group))])
+        reduced = iter(_reduce(spec, ens, idx[cols_group[good]], grid, samples[:, :, good], final_pars[:, good],
+                               model_pars[:, cols_group[good]], refs[cols_group[good]]))
+        rows += [_failed_row(spec, indices[cols_group[j]], *failed[j]) if j in failed else next(reduced)
+                 for j in range(len(cols_group))]
     return rows
 
 
@@ -484,68 +385,15 @@ def _failed_row(spec: SweepSpec, index: int, outcome: str, t_stop: float) -> dic
     return row
 
 
-def _segments(samples, lengths) -> np.ndarray:
-    """The first ``lengths[l]`` samples of every lane l, lane after lane: (sum(lengths), n_states)."""
-    lanes = np.moveaxis(samples, 2, 0)  # (lanes, grid, states)
-    return lanes[np.arange(samples.shape[0])[None, :] < np.asarray(lengths)[:, None]]
-
-
-def _guard(spec: SweepSpec, sysm: System, grid, samples, model_pars, stopped, t_stop, friction=None) -> list:
-    """Per lane, (outcome, time) of the first sample that should not exist, or None (module docstring).
-
-    Every sample before the lane's stop must be finite, inside the domain, above ``[stop]
-    theta_below``, at N > 0 and, with a coefficient (``friction``, per lane), need no more than it
-    (within :data:`verify.engine.failures.SLIP_SLACK_EPS`, as ``solve``'s guard); at a sample on
-    the stop time itself the stopping event's own function is ~0, so the samples checked are those
-    strictly before it.
-    """
-    n_lanes = samples.shape[2]
-    checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), len(grid))
-    inside = np.arange(len(grid))[:, None] < checked[None, :]  # (grid, lanes)
-    finite = np.isfinite(samples[:, :8, :]).all(axis=1) | ~inside
-    out = [None] * n_lanes
-    for k in np.flatnonzero(~finite.all(axis=0)):
-        out[k] = ("failed:non_finite", float(grid[np.argmin(finite[:, k])]))
-    model = get_model(spec.model)
-    lo, hi = float(model.domain.theta_min), float(model.domain.theta_max)
-    th = samples[:, TH, :]
-    with np.errstate(invalid="ignore"):
-        ok = (lo < th) & (th < hi)
-        if spec.theta_stop is not None:
-            ok &= th > spec.theta_stop
-    finite_lanes = finite.all(axis=0)
-    if sysm.normal_force is not None and finite_lanes.any():
-        lanes = np.flatnonzero(finite_lanes)
-        lengths = checked[lanes]
-        points = _segments(samples[:, :8, lanes], lengths)
-        normal = batch.per_run(sysm.normal_force, points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
-                               lengths)[0]
-        positive = np.ones((len(lanes), len(grid)), bool)
-        positive[np.arange(len(grid))[None, :] < lengths[:, None]] = normal > 0
-        ok[:, lanes] &= positive.T
-        if friction is not None:
-            need = batch.per_run(friction_twin(spec.model), points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
-                                 lengths)[1]
-            mu = np.repeat(friction[lanes], lengths)
-            within = np.ones((len(lanes), len(grid)), bool)
-            with np.errstate(invalid="ignore"):  # NaN where N <= 0, refused above
-                within[np.arange(len(grid))[None, :] < lengths[:, None]] = ~(
-                    need > mu + SLIP_SLACK_EPS * np.finfo(float).eps * np.maximum(1.0, mu))
-            ok[:, lanes] &= within.T
-    ok |= ~inside
-    for k in np.flatnonzero(finite_lanes & ~ok.all(axis=0)):
-        out[k] = ("failed:event_detection", float(grid[np.argmin(ok[:, k])]))
-    return out
-
-
-def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, model_pars, refs) -> list:
-    """The rows of lanes that ran to their end, from their samples (grid, states, lanes) at once."""
-    reason = final_pars[sysm.lanes.reason].astype(int)
+def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, model_pars, refs) -> list:
+    """The rows of lanes that ran to their end, from their samples (grid, states, lanes) at once; a lane
+    that breaks a guard (:meth:`verify.engine.ensemble.Ensemble.guard`) gets a failed row."""
+    reason = ens.record(final_pars, "reason").astype(int)
     stopped = reason != 0
-    t_stop = final_pars[sysm.lanes.t_stop]
+    t_stop = ens.record(final_pars, "t_stop")
     kept = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="right")), len(grid))
-    friction = final_pars[sysm.friction] if sysm.friction is not None else None
-    guarded = _guard(spec, sysm, grid, samples, model_pars, stopped, t_stop, friction)
+    friction = ens.record(final_pars, "friction") if spec.slips else None
+    guarded = ens.guard(grid, samples, model_pars, stopped, t_stop, spec.theta_stop, friction)
     rows = [None] * len(indices)
     for k, failure in enumerate(guarded):
         if failure is not None:
@@ -556,12 +404,12 @@ def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, m
     lengths = kept[lanes]
     starts = np.cumsum(lengths) - lengths
     ends = starts + lengths - 1
-    y = _segments(samples[:, :, lanes], lengths)
-    diag = batch.per_run(sysm.diagnostics, np.ascontiguousarray(y[:, :8].T),
+    y = segments_of(samples[:, :, lanes], lengths)
+    diag = batch.per_run(ens.energy_terms, np.ascontiguousarray(y[:, :8].T),
                          np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
     omega_z, terms = diag[0], diag[1:]
     energy, scale = terms.sum(axis=0), np.abs(terms).sum(axis=0)
-    work = y[:, 8] if sysm.n_states > 8 else 0.0
+    work = y[:, ens.lanes.row("W")] if "W" in ens.lanes.states else 0.0
     drift = (np.maximum.reduceat(np.abs(energy + work - np.repeat(energy[starts], lengths)), starts)
              / np.maximum.reduceat(scale, starts))
     th = y[:, TH]
@@ -572,7 +420,7 @@ def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, m
         q[f"final_{name}"] = y[ends, i]
     if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself is
         # between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
-        need = batch.per_run(friction_twin(spec.model), np.ascontiguousarray(y[:, :8].T),
+        need = batch.per_run(ens.friction_required, np.ascontiguousarray(y[:, :8].T),
                              np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
         need = np.where(need[0] > 0, need[1], np.nan)
         q["max_friction_required_on_grid"] = np.fmax.reduceat(need, starts)
@@ -582,13 +430,13 @@ def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, m
         point = spec.point(index)
         stop = float(t_stop[k]) if stopped[k] else spec.t_end
         row = {"idx": index, **{f"in_{a}": v for a, v in point.items()},
-               "outcome": "ok" if not stopped[k] else sysm.events[reason[k] - 1], "t_stop": stop,
+               "outcome": "ok" if not stopped[k] else ens.event_name(reason[k]), "t_stop": stop,
                "energy_drift_vs_terms": float(drift[j])}
         values = {name: column[j] for name, column in q.items()}
         if friction is not None:
             slipped = row["outcome"] == "slips"
             values.update(slipped=float(slipped), t_slip=stop if slipped else math.nan,
-                          theta_at_slip=final_pars[sysm.theta_at_stop, k] if slipped else math.nan)
+                          theta_at_slip=ens.record(final_pars, "theta_at_stop")[k] if slipped else math.nan)
         if "tilt" in point:
             values["growth"] = values["max_theta_deviation"] / point["tilt"]
         if wanted:

@@ -101,13 +101,13 @@ class Estimate:
 
 def estimate(spec: SweepSpec, threads: int = None) -> Estimate:
     """Points, memory per chunk, store size and a rough time of ``spec``, from its text alone."""
+    from ..engine.ensemble import resolve
     from ..engine.lanes import simd_width
-    from models import get_model
 
     threads = threads or os.cpu_count() or 1
     bs = simd_width()
     lanes = -(-min(spec.chunk, spec.n_points) // bs) * bs
-    n_states = 8 + (get_model(spec.model).dissipation is not None)
+    n_states = 8 + (resolve(spec.model).dissipation is not None)
     # the dense output of every lane, plus ~1 copy for the reductions and the inputs
     memory = int(lanes * spec.samples * n_states * 8 * 1.5) + lanes * 1024
     store = spec.n_points * (8 * len(columns(spec)) + 40)

@@ -82,8 +82,10 @@ from typing import Optional
 
 import numpy as np
 
-from models import ALL_NAMES, get_model
+from models import ALL_NAMES, BODY_PREFIX
 from models.symbols import STATE_NAMES
+
+from ..engine.ensemble import resolve
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -284,9 +286,13 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     _only(sweep, {"name", "model", "t_end", "samples", "chunk", "store"}, f"{where} [sweep]")
     name = _text(sweep, "name", where)
     model_name = _text(sweep, "model", where)
-    if model_name not in ALL_NAMES:
-        raise SpecError(f"{where}: [sweep] model = {model_name!r} is unknown; allowed: {', '.join(ALL_NAMES)}")
-    model = get_model(model_name)
+    if model_name not in ALL_NAMES and not model_name.startswith(BODY_PREFIX):
+        raise SpecError(f"{where}: [sweep] model = {model_name!r} is unknown; allowed: {', '.join(ALL_NAMES)}, or a "
+                        f"shipped body {BODY_PREFIX}NAME (python -m verify models)")
+    try:
+        model = resolve(model_name)  # a body file's model is derived once and kept on disk
+    except ValueError as err:  # an unknown body
+        raise SpecError(f"{where}: [sweep] model = {model_name!r}: {err}") from None
     t_end = _positive(sweep.get("t_end"), "[sweep] t_end", where)
     samples = _count(sweep.get("samples", 401), "[sweep] samples", where, minimum=2)
     chunk = _count(sweep.get("chunk", 512), "[sweep] chunk", where, minimum=1)
@@ -422,7 +428,7 @@ def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) 
     if name == FRICTION and not (lo > 0 and hi > 0):
         raise SpecError(f"{where}: [[axis]] friction: a friction coefficient must be positive; got from = {lo}, "
                         f"to = {hi}")
-    model = get_model(model_name)
+    model = resolve(model_name)
     for end, raw in (("from", ax.get("from")), ("to", ax.get("to"))):  # monotone axis: its ends bound it
         _in_range(model, name, lo if end == "from" else hi, raw, f"[[axis]] {name} {end} = {raw!r}", where)
     # geometric axes keep their ends exactly as written (AxisValues.value)
