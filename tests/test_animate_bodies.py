@@ -168,6 +168,14 @@ def test_every_frame_touches_the_plane_and_the_stem_is_not_below_it(tippe_panels
             ok, lowest, nearest = touching(panel.profile, quads[:n_body], th, _phi_of(panel.rotations[k]), x, y, bound)
             assert ok, (panel.kind, k, th, lowest, nearest, bound)
             assert quads[n_body:, :, 2].min() >= -HEIGHT_TOL, (k, th)  # the stem is cut at the floor
+        fine, _ = revolution.mesh(panel.profile, **FINE)  # the panel's placement, with the strong bound
+        fine_bound = revolution.resolution(panel.profile, **FINE)
+        for k in range(0, len(clock.times), 20):
+            quads = fine.placed(panel.rotations[k], panel.centres[k])[0]
+            x, y = panel.frame_path[k]
+            ok, lowest, nearest = touching(panel.profile, quads, panel.frame_theta[k], _phi_of(panel.rotations[k]),
+                                           x, y, fine_bound)
+            assert ok, ("fine", panel.kind, k, panel.frame_theta[k], lowest, nearest, fine_bound)
 
 
 def _phi_of(rotation) -> float:
