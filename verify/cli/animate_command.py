@@ -19,8 +19,6 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-import numpy as np
-
 from ..guard import Session
 from .arguments import UsageError, _positive, _positive_int
 from .run_command import RunRequest, add_run_options, output_points, read_request, run
@@ -218,6 +216,7 @@ def _live_run(args, session, request: RunRequest, label: str, body=None):
 def _slip(sol, request: RunRequest) -> dict:
     """The contact's slip (inertial x, y) and phase of a run with friction: the hybrid's phases and (s, alpha),
     or the smooth law's (slip_e1, slip_h) in (e1, h) with its phase by |u| against eps; {} for a rolling run."""
+    import numpy as np  # lazy on purpose: the parser imports this module, and listings import nothing heavy
     if hasattr(sol, "phases"):  # exact Coulomb (verify.engine.hybrid): s and alpha where sliding, 0 and NaN rolling
         speed = np.asarray(sol.slip_speed, float)
         alpha = np.nan_to_num(np.asarray(sol.slip_direction, float))
@@ -234,6 +233,8 @@ def _slip(sol, request: RunRequest) -> dict:
 
 
 def _file_run(path: str):
+    import numpy as np  # lazy on purpose: the parser imports this module, and listings import nothing heavy
+
     from ..animation import AnimationRun
     from ..series.files import RunFileError, read_run
 
