@@ -85,6 +85,7 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
     """
     from matplotlib.figure import Figure  # matplotlib only when drawing: geometry imports stay cheap
 
+    from .revolution import profile_for
     from .scene import Panel
 
     runs = list(runs) if not isinstance(runs, AnimationRun) else [runs]
@@ -96,6 +97,8 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
         speed = _check_number("speed", speed, 0)
     width = int(_check_number("width_px", width_px, 15)) // 2 * 2  # even: video encoders need it
     params = [geometry.checked_params(r.model, r.params) for r in runs]
+    profiles = [profile_for(r.model, r.body, p) if geometry.body_kind(r.model) == "revolution" else None
+                for r, p in zip(runs, params)]
     arrays = [checked_arrays(r) for r in runs]
     for run, a in zip(runs, arrays):
         timing.check_grid(run.label, a)
@@ -105,8 +108,12 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
     fig = Figure(figsize=(width / DPI, height / DPI), dpi=DPI)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.9, wspace=0)
     fontsize = max(4.0, min(11.0, width / n / 40))
-    panels = [Panel(fig.add_subplot(1, n, i + 1, projection="3d"), run.label, run.model, p, a, clock.times, fontsize)
-              for i, (run, p, a) in enumerate(zip(runs, params, arrays))]
+    panels = [Panel(fig.add_subplot(1, n, i + 1, projection="3d"), run.label, run.model, p, a, clock.times, fontsize,
+                    profile)
+              for i, (run, p, a, profile) in enumerate(zip(runs, params, arrays, profiles))]
+    common = max(p.span for p in panels)
+    for p in panels:  # one scale for every panel
+        p.widen(common)
     text = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=fontsize, family="monospace")
     step = clock.speed / fps
     state = timing.speed_text(clock.speed) + (f", to fit {clock.times[-1] / clock.speed:.3g} s" if clock.raised else "")

@@ -35,7 +35,7 @@ DRAWN_MODELS = {
     "hurricane": "hurricane", "gyroscope": "gyroscope",
 }
 #: The parameters a body's drawing reads (others are accepted and ignored).
-REQUIRED_PARAMS = {"disk": ("k",), "ring": ("h",), "hurricane": (), "gyroscope": ()}
+REQUIRED_PARAMS = {"disk": ("k",), "ring": ("h",), "hurricane": (), "gyroscope": (), "revolution": ()}
 #: The ring's wall (inner radius 1 - w) where the run does not give ``w``: the paper's ring,
 #: w = 0.5 cm of R = 3.66 cm (text after Eq. 62).
 RING_WALL_DEFAULT = 0.5 / 3.66
@@ -43,17 +43,30 @@ RING_WALL_DEFAULT = 0.5 / 3.66
 PIVOT_DISTANCE = 2.0
 
 
+#: The prefix of a body of revolution's models (``body:NAME``, ``body:NAME+coulomb``, ``body:NAME+smooth``):
+#: drawn from the body file's profile (:mod:`verify.animation.revolution`).
+BODY_PREFIX = "body:"
+
+
 def body_kind(model: str) -> str:
-    """The body drawn for ``model``: 'disk', 'ring', 'hurricane' or 'gyroscope'.
+    """The body drawn for ``model``: 'disk', 'ring', 'hurricane', 'gyroscope', or 'revolution' (a body file's).
 
     Raises
     ------
     AnimationError
         ``model`` is not drawable (one line naming it and the drawable models).
     """
+    if isinstance(model, str) and model.startswith(BODY_PREFIX) and len(model) > len(BODY_PREFIX):
+        return "revolution"
     if model not in DRAWN_MODELS:
-        raise AnimationError(f"cannot animate model {model!r}; allowed: {', '.join(DRAWN_MODELS)}")
+        raise AnimationError(f"cannot animate model {model!r}; allowed: {', '.join(DRAWN_MODELS)}, or body:NAME "
+                             "(a body file's)")
     return DRAWN_MODELS[model]
+
+
+def body_name(model: str) -> str:
+    """NAME of a body model ``body:NAME``, ``body:NAME+coulomb`` or ``body:NAME+smooth``."""
+    return model[len(BODY_PREFIX):].split("+", 1)[0]
 
 
 def checked_params(model: str, params) -> dict:
