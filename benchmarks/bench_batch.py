@@ -29,7 +29,7 @@ import numpy as np
 
 from models import get_model
 from verify.engine.compile import compile_model
-from verify.engine.lanes import simd_width
+from verify.engine.lanes import compile_lanes, simd_width
 from verify.precision import parse_precision
 from verify.studies import maps
 from verify.sweep import load, parse
@@ -108,8 +108,6 @@ def sweep_case(spec, chunks, bs):
 
 
 def map_case(bs):
-    from verify.engine.lanes import compile_lanes
-
     rates, tilts = np.linspace(14.0, 42.0, 50), np.logspace(-6, -1, 40)
     runs = maps.prepare_runs("disk", "diameter-spin", rates, tilts, 10.0, {}, maps.CAP, False, bs)
     ens = runs.ensemble

@@ -25,11 +25,13 @@ import copy
 import os
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import heyoka as hy
 import numpy as np
 
 from verify.studies import maps
+from verify.studies.thresholds import threshold
 
 SUBSET_SCALAR = 200  # trajectories
 SUBSET_BATCH = 2000  # trajectories
@@ -96,8 +98,6 @@ def serial_batches(runs: maps.Runs, batches) -> tuple:
 
 def threaded_reuse(runs: maps.Runs, threads: int) -> tuple:
     """Every batch of the map, ``threads`` workers each reusing one integrator (no copy per batch)."""
-    from concurrent.futures import ThreadPoolExecutor
-
     n_batches = runs.states.shape[1] // runs.batch_size
     shares = np.array_split(np.arange(n_batches), threads)
     start = time.perf_counter()
@@ -108,8 +108,6 @@ def threaded_reuse(runs: maps.Runs, threads: int) -> tuple:
 
 
 def main(model="disk", motion="diameter-spin", n_rates=100, n_tilts=100):
-    from verify.studies.thresholds import threshold
-
     lin = float(threshold(model, motion).value)
     rates = np.linspace(0.5 * lin, 2.0 * lin, int(n_rates))
     tilts = np.logspace(-6, -1, int(n_tilts))

@@ -14,8 +14,13 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE_NAMES
 
+from ..engine.batch import pad_lanes
 from ..engine.compile import compile_model
+from ..engine.lanes import compile_lanes
 from ..precision import parse_precision
+from ..studies.maps import prepare_runs, stability_map
+from ..sweep import SPECS, load, parse
+from ..sweep.engine import ensemble_of, fastest_rate, lane_inputs, run_chunk
 from .sizes import TARGETS, _g, _size
 from .timing import interleaved, ratio_record
 
@@ -54,8 +59,6 @@ quantities = ["max_theta", "min_theta", "final_theta"]
 def bench_sweep_spec(per_axis: int, samples: int = 101):
     """The benchmark's own sweep: theta in [1.0, 1.4] x phidot in [-2, 2] x psidot in [5, 15],
     ``per_axis`` values each, 10 s, one chunk, ``samples`` output points, three cheap reductions."""
-    from ..sweep import parse
-
     n = per_axis ** 3
     return parse(BENCH_SWEEP_TOML.format(samples=samples, n=n, c=per_axis), "<benchmark sweep>")
 
@@ -128,9 +131,6 @@ def bare_lanes(ens, form_kwargs: dict, states, values: dict, end, threads: int, 
     with ``bare``: no ``alive`` factor, the events' callback freezes nothing), only the ``events`` named
     (None: all), no Python per lane.  ``end``: t_end (``ensemble_propagate_until_batch``) or an output grid
     (``ensemble_propagate_grid_batch``).  Returns run() -> lanes that did not reach the end."""
-    from ..engine.batch import pad_lanes
-    from ..engine.lanes import compile_lanes
-
     lanes = compile_lanes(ens.model, ens.form, ens.batch_size, ens.cooldown, bare=True, events=events, **form_kwargs)
     tb, bs = lanes.template, ens.batch_size
     n = states.shape[1]
@@ -192,10 +192,6 @@ def ensemble_against_bare(quick: bool, progress, repeats: int = None) -> list:
     """The sweep engine (``run_chunk``) and the stability map against bare batch ensembles of the same starts,
     interleaved.  The yardstick (target >= 0.9 of its throughput) has the suite's events and step cap: the
     guards are correctness; beside it, the ratio to a plain ensemble without them and the cost of each guard."""
-    from ..studies.maps import prepare_runs, stability_map
-    from ..sweep import SPECS, load
-    from ..sweep.engine import ensemble_of, fastest_rate, lane_inputs, run_chunk
-
     repeats = repeats or _size("ensemble_rounds", quick)
     threads = os.cpu_count() or 1
     bs = hy.recommended_simd_size()

@@ -64,7 +64,7 @@ def _positive_int(text, what: str, top: int | None = None, low: int = 1) -> int:
 
 def _precision(text, option: str = "--precision"):
     """parse_precision, with the MPFR floor (verify.precision.MIN_MPFR_BITS) checked first."""
-    from ..precision import FIXED, max_mpfr_bits, parse_precision
+    from ..precision import FIXED, max_mpfr_bits, parse_precision  # lazy: heyoka; the CLI's supervisor forks first
 
     s = str(text).strip()
     allowed = f"double, long, quad or mp:BITS (MPFR, BITS an integer from {MP_MIN_BITS} to {max_mpfr_bits()})"
@@ -113,7 +113,7 @@ def _value_pairs(items, what: str) -> dict:
         for name, value in pairs.items():  # the decimal checks (and messages) of before
             _decimal(value, f"--{what} {name}={_shown(value)}")
         return pairs
-    from ..expressions import ExpressionError, read_value
+    from ..expressions import ExpressionError, read_value  # lazy: only for a value that is not a plain decimal
 
     out = {}
     for name, value in pairs.items():

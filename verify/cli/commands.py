@@ -403,7 +403,10 @@ def cmd_sweep(args, session: Session) -> int:
             return 0
         session.interrupt_note = (f"the store {args.store or spec.store} keeps the finished chunks; "
                                   "rerun the same command to resume")
-        result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet, yes=args.yes)
+        from ..studies.orbits import senses  # lazy: only the sweep command reads orbits; start-up imports no study
+
+        result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet, yes=args.yes,
+                                 senses=senses)
     except (sweep.SpecError, sweep.StoreError, sweep.ClusterError) as err:
         raise UsageError(str(err)) from None
     session.emit(f"{spec.name}: {result.rows} of {spec.n_points} trajectories in {result.store} "

@@ -9,6 +9,7 @@ import heyoka as hy
 import numpy as np
 
 from . import integrators, segments
+from .compile import to_heyoka
 from .problem import Problem
 from .trajectory import End, IntegrationError
 from ..precision import Precision, parse_precision
@@ -118,8 +119,6 @@ def sympy_system(states, time=None, parameters=()) -> list:
     refuses them.  The studies describe their auxiliary equations this way and never build heyoka
     expressions themselves.
     """
-    from .compile import to_heyoka
-
     names = [name for name, _, _ in states]
     variables = hy.make_vars(*names) if len(names) > 1 else [hy.make_vars(*names)]
     mapping = {sym: var for (_, sym, _), var in zip(states, variables) if sym is not None}

@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
@@ -110,6 +111,4 @@ def exact_decimal(t: float) -> str:
     """The exact decimal value of a double (so that a quad run is evaluated at that very time)."""
     if not math.isfinite(t):
         raise ValueError(t)
-    from decimal import Decimal
-
     return format(Decimal(t), "f")

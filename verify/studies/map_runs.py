@@ -13,8 +13,10 @@ import mpmath
 import numpy as np
 
 from . import thresholds
-from ..engine import batch
+from ..engine import batch, validation
 from ..engine.ensemble import Ensemble, ensemble
+from ..engine.single import resolve_parameters
+from ..precision import parse_precision
 
 SAMPLES_PER_RADIAN = 4  # dense-output samples per radian of the fastest rate (see sample_times)
 CHUNK = 64  # batches per ensemble call: bounds the memory of the dense output held at once
@@ -122,10 +124,6 @@ class Runs:
 def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: dict, cap: float,
                  step_cap: bool, batch_size: int) -> Runs:
     """Initial states, per-lane parameters, sample times and step cap of a map (inputs validated)."""
-    from verify.engine import validation
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
-
     ens = map_ensemble(model, batch_size, 2.0 * float(t_end) + 1.0)  # the cooldown of Runs.cooldown
     mdl = ens.model
     resolved = resolve_parameters(mdl, params, parse_precision("double"))

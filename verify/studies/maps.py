@@ -54,6 +54,8 @@ from models import BODY_PREFIX
 from . import thresholds
 from ..engine.ensemble import resolve
 from ..engine.lanes import simd_width
+from ..engine.single import resolve_parameters
+from ..precision import parse_precision
 # the runs (re-exported: tests and benchmarks/ reach them as maps.Runs, maps.prepare_runs, ...)
 from .map_runs import CHUNK, SAMPLES_PER_RADIAN, Runs, map_ensemble, prepare_runs, propagate, sample_times  # noqa: F401
 
@@ -229,9 +231,6 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
     """
     _check_motion(model, motion)
     params = dict(params or {})
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
-
     resolve_parameters(resolve(model), params, parse_precision("double"))  # names and ranges, before sympy
     t_end = _positive("t_end", t_end)
     cap = _positive("cap", cap)
