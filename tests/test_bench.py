@@ -131,7 +131,7 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     assert [ln for ln in md.splitlines() if ln.startswith("## ")] == [
         "## Targets", "## solve against bare heyoka", "## The sweep engine and the stability map against a bare ensemble",
         "## Long-run energy error", "## heyoka's own modes on the benchmark grid", "## Work against precision",
-        "## Compile cost"]
+        "## Compile cost", "## Body files"]
     # the layout does not depend on the numbers
     assert _skeleton(render_markdown(_scaled(data, 1.37))) == _skeleton(md)
     assert (tmp_path / "figures" / "bench-work-precision.png").read_bytes()[:4] == b"\x89PNG"
@@ -151,6 +151,28 @@ def test_the_compile_cost_script_runs_in_a_fresh_process():
     res = subprocess.run([sys.executable, "-c", _COMPILE_SCRIPT, json.dumps([])], cwd=root,
                          capture_output=True, text=True, timeout=300)
     assert res.returncode == 0, res.stderr[-2000:]
+
+
+def test_the_body_derivation_script_runs_in_a_fresh_process_and_leaves_its_cache(tmp_path):
+    """The body files' derivation script (a string run by ``python -c``: nothing else checks its names) runs
+    twice in fresh processes, and the first leaves the derivation in the given cache folder for the second
+    (what the benchmark's 'warm cache' column times; times are the benchmark's, not a test's)."""
+    import json
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from verify.bench.bodies import _DERIVE_SCRIPT
+
+    root = Path(__file__).resolve().parents[1]
+    env = dict(os.environ, HEYOKA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(root))
+    for _ in range(2):
+        res = subprocess.run([sys.executable, "-c", _DERIVE_SCRIPT, json.dumps(["tippe-top"])], cwd=root, env=env,
+                             capture_output=True, text=True, timeout=300)
+        assert res.returncode == 0, res.stderr[-2000:]
+        assert json.loads(res.stdout.strip().splitlines()[-1])["tippe-top"] > 0
+    assert any((tmp_path / "bodies").iterdir())  # the derivation was cached in the given folder
 
 
 def test_the_report_names_the_latest_benchmark_run_and_does_not_run_one():

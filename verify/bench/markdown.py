@@ -29,7 +29,7 @@ def render_markdown(r: dict) -> str:
         "",
     ]
     lines += _md_targets(r) + _md_solve(r) + _md_ensembles(r) + _md_energy(r) + _md_modes(r) + _md_work_precision(r)
-    lines += _md_compile(r) + _md_commands(r)
+    lines += _md_compile(r) + _md_bodies(r) + _md_commands(r)
     return "\n".join(lines)
 
 
@@ -295,6 +295,28 @@ def _md_compile(r: dict) -> list:
     lines += ["", f"Also per fresh process: `import heyoka` {cold['import']:.2f} s; deriving the disk's equations "
                   f"(sympy) {cold['derive']:.2f} s; peak memory {cold['max_rss_mib']:.0f} MiB.", ""]
     return lines
+
+
+def _md_bodies(r: dict) -> list:
+    b = r.get("bodies")
+    if not b:
+        return []
+    d = b["derivation"]
+    cold, warm = d["seconds"]["empty cache"], d["seconds"]["warm cache"]
+    lines = ["## Body files", "",
+             "A body file's derivation (`models.bodies.load` + `model_of`: contact point, equations, invariants) in a "
+             "fresh process with an empty cache, then in a second with the cache the first left (the derivation is "
+             "cached by a hash of the body and the deriving sources).", "",
+             "| body | empty cache (s) | warm cache (s) |", "|---|---:|---:|"]
+    lines += [f"| {name} | {cold[name]:.2f} | {warm[name]:.3f} |" for name in d["bodies"]]
+    lines += ["", "`solve` of a body file against the built-in model with the same equations (10 s from the model's "
+                  "standard state, double, interleaved rounds):", "",
+              "| body | built-in | body (s) | built-in (s) | ratio [median, range over rounds] | target |",
+              "|---|---|---:|---:|---|---|"]
+    lines += [f"| {rec['measured']} | {rec['baseline']} | {rec['seconds']:.4g} | {rec['baseline_seconds']:.4g} | "
+              f"{rec['ratio']:.3g} [{rec['median_round_ratio']:.3g}, {rec['round_ratio_range'][0]:.3g}-"
+              f"{rec['round_ratio_range'][1]:.3g}] | {_verdict(rec)} |" for rec in b["runs"]]
+    return lines + [""]
 
 
 def _attempt_row(a: dict, base, floor: float) -> str:
