@@ -316,7 +316,9 @@ def contact_of_curve(r: sp.Expr, z: sp.Expr, s_min: sp.Expr, s_max: sp.Expr) -> 
             raise CurveError(f"{what} uses {', '.join(sorted(map(str, e.free_symbols - {s})))}; allowed: s")
     lo, hi, below, above = check_curve(r, z, s_min, s_max)
     branch = pick_branch(r, z, s_min, s_max, lo, hi, solve_contact(r, z))
-    r2, r3 = -r.subs(s, branch), z.subs(s, branch)
+    # tan(u) -> sin(u)/cos(u): sympy writes atan's inverse through 1/tan, whose removable singularity at
+    # theta = pi/2 heyoka's Taylor recurrences for tan do not survive (the ellipse curve's run met NaN there)
+    r2, r3 = (e.replace(sp.tan, lambda u: sp.sin(u) / sp.cos(u)) for e in (-r.subs(s, branch), z.subs(s, branch)))
     dyadic_only(r2 + r3, "the contact point of the curve")
     return r2, r3, lo, hi, below, above
 
