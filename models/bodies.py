@@ -49,7 +49,8 @@ from .base import Domain, Parameter
 from .build import invariant, rolling_model
 from .catalogue import BODY_PREFIX
 from .common import AXIAL_BOUND, GRAVITY, inertia_parameters
-from .profiles import FIELDS, RELATIONS, InvalidBody, check_domain, check_inertia, contact, vector
+from .profile_curve import R2, R3, CurveError, read_expression, with_contact
+from .profiles import EXPRESSIONS, FIELDS, RELATIONS, InvalidBody, check_domain, check_inertia, contact, vector
 from .symbols import omega_body
 
 #: The body files shipped with the suite (the paper's bodies from their profiles, and new ones).
@@ -114,7 +115,12 @@ def body_from_mapping(data: dict, source: str = "the body") -> Body:
     kind = profile["kind"]
     if not isinstance(kind, str):
         raise InvalidBody(f"{source}: profile.kind = {kind!r}; allowed: a string, one of the profile kinds")
-    fields = {k: exact(v, f"profile.{k}") for k, v in profile.items() if k != "kind"}
+    curve = EXPRESSIONS.get(kind, ())  # a curve's r and z: expressions of s through a whitelist (models.profile_curve)
+    try:
+        fields = {k: read_expression(v, f"profile.{k}") if k in curve else exact(v, f"profile.{k}")
+                  for k, v in profile.items() if k != "kind"}
+    except CurveError as err:
+        raise InvalidBody(str(err)) from None
     inertia = data.get("inertia")
     if not isinstance(inertia, dict) or set(inertia) != {"I1", "I3"}:
         raise InvalidBody(f"{source}: an [inertia] table with exactly I1 and I3 is needed")
@@ -334,7 +340,7 @@ def cached_derivation(body: Body):
 def _sources_hash() -> str:
     here = Path(__file__).resolve().parent
     h = hashlib.sha256()
-    for name in ("base", "bodies", "build", "common", "profiles", "rolling", "symbols"):
+    for name in ("base", "bodies", "build", "common", "profile_curve", "profiles", "rolling", "symbols"):
         h.update((here / f"{name}.py").read_bytes())
     return h.hexdigest()
 
@@ -356,6 +362,11 @@ def _derive(body: Body):
     shape, symbols = _shape_parameters(body)
     r2, r3 = vector(body.kind, symbols)
     extra = _sphere_integrals(I1, I3, r2, r3) if body.kind == "sphere" else ()
+    if body.kind == "curve":  # derived with r2, r3 as functions of theta, then put in (models.profile_curve)
+        generic = rolling_model(f"body:{body.name}", body.description or f"curve body '{body.name}'",
+                                (p1, p3, GRAVITY), I1, I3, R2, R3, Domain(lo, hi, below, above), unit="M L^2",
+                                theta_ref=(lo + hi) / 2)
+        return with_contact(generic, r2, r3)
     return rolling_model(f"body:{body.name}", body.description or f"{body.kind} body '{body.name}'",
                          (p1, p3, *shape, GRAVITY), I1, I3, r2, r3, Domain(lo, hi, below, above), unit="M L^2",
                          extra_invariants=extra, theta_ref=(lo + hi) / 2)
@@ -387,6 +398,8 @@ def _shape_parameters(body: Body) -> tuple:
     rim rounded all the way (tube_radius = half_thickness) keeps one symbol for both: it is what makes the body
     pass theta = pi/2 smoothly, so --param cannot split them."""
     params, symbols = [], {}
+    if body.kind == "curve":  # a curve's numbers stay in its expressions: its checks hold for these values only
+        return (), dict(body.profile)
     for field, value in body.profile:
         if body.kind == "torus-rim" and field == "tube_radius" and value == body.values["half_thickness"]:
             symbols[field] = symbols["half_thickness"]
