@@ -151,9 +151,9 @@ theta_below = 0.6
 
 
 def results() -> dict:
-    from verify.studies import maps
-    from verify.sweep import parse
-    from verify.sweep.engine import run_chunk
+    from verify.studies import maps  # lazy: heyoka (0.9 s) only to compute, not to compare
+    from verify.sweep import parse  # lazy: heyoka (0.9 s) only to compute, not to compare
+    from verify.sweep.engine import run_chunk  # lazy: heyoka (0.9 s) only to compute, not to compare
 
     out = {}
     with tempfile.TemporaryDirectory() as tmp:

@@ -38,6 +38,7 @@ import mpmath
 import sympy as sp
 
 from models import get_model
+from models.bodies import shipped
 from models.steady_bodies import (
     DPS,
     domain,
@@ -394,8 +395,6 @@ def table(records) -> str:
 
 def main(argv=None) -> int:
     """``python -m verify.studies.steady_bodies [BODY ...] [--param NAME=VALUE] [--format json]``."""
-    from models.bodies import shipped
-
     parser = argparse.ArgumentParser(prog="python -m verify.studies.steady_bodies", description=main.__doc__)
     parser.add_argument("bodies", nargs="*", help=f"shipped bodies (default: all): {', '.join(shipped())}")
     parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE")
