@@ -13,10 +13,6 @@ from __future__ import annotations
 import mpmath
 import sympy as sp
 
-from ..engine.single import resolve_parameters
-from ..expressions import ExpressionError, read_value
-from ..precision import parse_precision
-from ..studies.thresholds import check_reading
 from .arguments import UsageError
 
 #: significant digits of a printed threshold: the models' (verify.studies.thresholds.to_record)
@@ -38,6 +34,10 @@ def body_model(text: str, option: str):
 
 def check_params(model, params: dict, study: str) -> None:
     """Names, ranges and the profile's relations of ``--param`` values (as a run checks them), and their reading."""
+    from ..engine.single import resolve_parameters  # lazy: heyoka: 'spindown' imports this first
+    from ..precision import parse_precision  # lazy: as the line above
+    from ..studies.thresholds import check_reading  # lazy: as the line above
+
     try:
         resolve_parameters(model, params, parse_precision("double"))
         check_reading(params, study)
@@ -73,6 +73,8 @@ def body_threshold(model, motion: str, params: dict, theta0=None) -> dict:
 
 def _tilt(text):
     """--theta0 as an mpmath number: a decimal or an expression such as pi or pi/2 (verify.expressions)."""
+    from ..expressions import ExpressionError, read_value  # lazy: verify.expressions only for --theta0
+
     bad = UsageError(f"--theta0 {text!r} is not a number; allowed: a tilt in rad such as 0, pi or 1.2049")
     try:
         value = read_value(str(text).strip(), "--theta0")
@@ -111,7 +113,7 @@ def _side(stable: str, value) -> str:
 
 def body_spindown_record(model, theta: str, family: str, params: dict) -> dict:
     """The record of ``spindown`` for a body (:func:`verify.studies.spindown.body_spindown`)."""
-    from ..studies.spindown import body_spindown, to_record  # lazy: only for a body, not 'threshold disk'
+    from ..studies.spindown import body_spindown, to_record  # lazy: only for a body, not 'spindown disk'
 
     check_params(model, params, "spin-down study")
     try:

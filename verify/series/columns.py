@@ -15,7 +15,6 @@ s^2 (m R^2/s^2, or 2 m a^2/s^2 for the two balls), N in units of M g.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from importlib.metadata import PackageNotFoundError, version
 
 import numpy as np
 
@@ -138,6 +137,8 @@ def run_columns(sol, extra_meta: dict | None = None) -> RunColumns:
 
 def suite_version() -> dict:
     """The suite's version and the commit of its sources (``verify.provenance``)."""
+    from importlib.metadata import PackageNotFoundError, version  # lazy: 30 ms, only to write a run
+
     from ..provenance import source_commit  # lazy: 46 ms, only to write a run
 
     try:
