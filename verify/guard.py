@@ -10,8 +10,6 @@ shell started only waits for it, so nothing in that process ever waits for the c
 """
 from __future__ import annotations
 
-import ctypes
-import fcntl
 import json
 import os
 import select
@@ -75,6 +73,8 @@ def isatty(stream) -> bool:
 def _flush_c_stdio() -> None:
     """fflush(NULL): C and C++ (std::cout is synced with stdio) output still in the C library's buffers."""
     try:
+        import ctypes  # lazy: ctypes (3 ms) only in the command's process, not the supervisor or 'import verify.cli'
+
         ctypes.CDLL(None).fflush(None)
     except Exception:  # pragma: no cover - no libc to flush
         pass
@@ -241,6 +241,8 @@ def _single_threaded() -> bool:
 def _pipe() -> tuple:
     """A pipe whose two ends are neither 0, 1 nor 2: with stdout closed (``>&-``) os.pipe would
     hand out fd 1, and the child would take the pipe for its stdout."""
+    import fcntl  # lazy: POSIX only; supervise calls this only where os.fork exists
+
     ends = []
     for fd in os.pipe():
         if fd < 3:
@@ -253,6 +255,8 @@ def _pipe() -> tuple:
 def _die_with(parent: int) -> None:
     """Linux: have the kernel SIGKILL this child when its parent, the supervisor, dies."""
     try:
+        import ctypes  # lazy: as in _flush_c_stdio
+
         ctypes.CDLL(None).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
     except (OSError, AttributeError):  # not Linux
         return
