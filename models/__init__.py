@@ -27,7 +27,7 @@ _BUILDERS = {"disk": "disk", "ring": "ring", "hurricane": "hurricane", "sliding-
 
 
 def _dissipative(name: str):
-    from . import dissipative, ring_dissipation
+    from . import dissipative, ring_dissipation  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
     body, law = name.split("+", 1)
     return dissipative.dissipative_disk(law) if body == "disk" else ring_dissipation.dissipative_ring(law)
@@ -51,7 +51,7 @@ def get_model(name: str, equations: str = "derived"):
     if equations not in allowed:
         raise ValueError(f"equations={equations!r} for model {name!r}; allowed: {', '.join(allowed)}")
     if name.startswith(BODY_PREFIX):  # a body file: shipped (body:NAME) or registered (body:NAME@HASH), derived once
-        from .bodies import model_of, resolve
+        from .bodies import model_of, resolve  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
         return model_of(resolve(name[len(BODY_PREFIX):]))
     if name in _BUILDERS:
@@ -61,7 +61,7 @@ def get_model(name: str, equations: str = "derived"):
 
 def _check_name(name: str) -> None:
     if name.startswith(BODY_PREFIX):  # body:NAME (shipped) or body:NAME@HASH (a file loaded here or saved by another process)
-        from .bodies import InvalidBody, resolve
+        from .bodies import InvalidBody, resolve  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
         try:
             resolve(name[len(BODY_PREFIX):])
@@ -79,11 +79,11 @@ def _check_name(name: str) -> None:
 def __getattr__(attr: str):
     """``models.Model`` and the submodules (``models.disk``), imported when first used."""
     if attr == "Model":
-        from .base import Model
+        from .base import Model  # lazy: sympy (0.5 s) kept out of --help, which imports this package
 
         return Model
     if attr in ("body_of_revolution", "load_body"):  # a body of revolution from its profile (models.bodies)
-        from . import bodies
+        from . import bodies  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
         return bodies.body_of_revolution if attr == "body_of_revolution" else bodies.load
     try:

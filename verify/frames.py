@@ -44,8 +44,8 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
-from models import get_model
-from models.symbols import STATE, STATE_NAMES, omega_body, phi, psi, theta, thetadot, to_inertial
+from models import disk, get_model, hurricane, ring
+from models.symbols import STATE, STATE_NAMES, frame_vectors, omega_body, phi, psi, theta, thetadot, to_inertial
 
 from .scoring.geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTION, QUATERNION,  # noqa: F401
                                QUATERNION_FORM, b_to_euler, contact_point, detect, frame, matrix_from_quaternion,
@@ -53,8 +53,6 @@ from .scoring.geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTIO
 
 
 def _contact_geometry():
-    from models import disk, hurricane, ring
-
     return {"disk": (disk.R2, disk.R3, "rolling"), "ring": (ring.R2, ring.R3, "rolling"),
             "hurricane": (hurricane.R2, hurricane.R3, "rolling"),
             "sliding-disk": (sp.Integer(-1), sp.Integer(0), "smooth")}
@@ -83,8 +81,6 @@ def quaternion() -> tuple:
 
 def contact_vector(model: str) -> sp.Matrix:
     """r_P in inertial components (paper Eqs. 7, 47, 63)."""
-    from models.symbols import frame_vectors
-
     r2, r3, _ = CONTACT[model]
     _, e2, e3 = frame_vectors()
     return r2 * e2 + r3 * e3

@@ -11,6 +11,7 @@ of one kind (sleeping at theta0 = 0 and at pi); ``--theta0`` picks one.  The spi
 from __future__ import annotations
 
 import mpmath
+import sympy as sp
 
 from .arguments import UsageError
 
@@ -23,7 +24,7 @@ THETA0_MATCH = 1e-3
 
 def body_model(text: str, option: str):
     """The model of a body given as a file, a shipped name or ``body:NAME[@HASH]`` (bad input: UsageError)."""
-    from models.bodies import InvalidBody, load, model_of
+    from models.bodies import InvalidBody, load, model_of  # lazy: sympy (0.6 s) only for a body, not 'threshold disk'
 
     try:
         return model_of(load(text))
@@ -33,9 +34,9 @@ def body_model(text: str, option: str):
 
 def check_params(model, params: dict, study: str) -> None:
     """Names, ranges and the profile's relations of ``--param`` values (as a run checks them), and their reading."""
-    from ..engine.single import resolve_parameters
-    from ..precision import parse_precision
-    from ..studies.thresholds import check_reading
+    from ..engine.single import resolve_parameters  # lazy: heyoka: 'spindown' imports this first
+    from ..precision import parse_precision  # lazy: as the line above
+    from ..studies.thresholds import check_reading  # lazy: as the line above
 
     try:
         resolve_parameters(model, params, parse_precision("double"))
@@ -46,7 +47,7 @@ def check_params(model, params: dict, study: str) -> None:
 
 def body_threshold(model, motion: str, params: dict, theta0=None) -> dict:
     """The record of ``threshold`` for one steady motion of a body (module docstring)."""
-    from ..studies.steady_bodies import thresholds
+    from ..studies.steady_bodies import thresholds  # lazy: only for a body, not 'threshold disk'
 
     check_params(model, params, "threshold study")
     records = thresholds(model, params)
@@ -72,9 +73,7 @@ def body_threshold(model, motion: str, params: dict, theta0=None) -> dict:
 
 def _tilt(text):
     """--theta0 as an mpmath number: a decimal or an expression such as pi or pi/2 (verify.expressions)."""
-    import sympy as sp
-
-    from ..expressions import ExpressionError, read_value
+    from ..expressions import ExpressionError, read_value  # lazy: verify.expressions only for --theta0
 
     bad = UsageError(f"--theta0 {text!r} is not a number; allowed: a tilt in rad such as 0, pi or 1.2049")
     try:
@@ -114,7 +113,7 @@ def _side(stable: str, value) -> str:
 
 def body_spindown_record(model, theta: str, family: str, params: dict) -> dict:
     """The record of ``spindown`` for a body (:func:`verify.studies.spindown.body_spindown`)."""
-    from ..studies.spindown import body_spindown, to_record
+    from ..studies.spindown import body_spindown, to_record  # lazy: only for a body, not 'spindown disk'
 
     check_params(model, params, "spin-down study")
     try:

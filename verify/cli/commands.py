@@ -3,9 +3,13 @@ each reads its arguments, runs, and hands its output to the session (``trajector
 Heavy modules are imported inside each command, so that ``--help`` and the listings answer at once."""
 from __future__ import annotations
 
+import json
 import math
 import sys
 import time
+from pathlib import Path
+
+from models.catalogue import ALIASES, BODY_PREFIX, COULOMB_NAMES, ENTRIES
 
 from ..guard import Session
 from .arguments import _DECIMAL, RunFailed, UsageError, _decimal, _numeric_pairs, _positive, _positive_int, _shown
@@ -16,8 +20,6 @@ from .output import _dumps
 
 def cmd_models(args, session: Session) -> int:
     """The models from :mod:`models.catalogue` (plain data, checked against the derivation by the tests)."""
-    from models.catalogue import ALIASES, COULOMB_NAMES, ENTRIES
-
     records = []
     for e in ENTRIES:
         records.append({
@@ -59,7 +61,7 @@ def cmd_models(args, session: Session) -> int:
 
 def cmd_starts(args, session: Session) -> int:
     """The named starts: every figure panel's and every reference case's (:mod:`verify.starts`)."""
-    from ..starts import DEFAULT_CASES, all_starts
+    from ..starts import DEFAULT_CASES, all_starts  # lazy: 10 ms kept out of --help, models
 
     starts = all_starts()
     if args.format == "json":
@@ -96,8 +98,8 @@ def _brief(text: str) -> str:
 
 def cmd_plot(args, session: Session) -> int:
     """``plot RUN --out FILE``: the picture of a saved run (:mod:`verify.series.plot`)."""
-    from ..series.files import RunFileError, read_run
-    from ..series.plot import picture_path, write_plot
+    from ..series.files import RunFileError, read_run  # lazy: numpy (0.25 s) kept out of --help
+    from ..series.plot import picture_path, write_plot  # lazy: numpy (0.2 s) kept out of --help
 
     try:
         out = picture_path(args.out, "--out")
@@ -114,9 +116,9 @@ def cmd_plot(args, session: Session) -> int:
 def _recorded_body(meta: dict, run_file) -> str | None:
     """The name of the body a run's file records (``trajectory --body``), read back from its exact text and checked
     against its fingerprint and model name, then registered (its name resolves here); None for a model's run."""
-    import tomllib
+    import tomllib  # lazy: tomllib (23 ms) only for 'plot' of a body's run; kept out of --help
 
-    from models.bodies import InvalidBody, body_from_mapping, fingerprint, register
+    from models.bodies import InvalidBody, body_from_mapping, fingerprint, register  # lazy: sympy, not --help
 
     recorded = meta.get("body")
     if recorded is None:
@@ -134,9 +136,7 @@ def _recorded_body(meta: dict, run_file) -> str | None:
 
 def _body_or_model(args, what: str) -> tuple:
     """(body model or None, the rest of the positionals): ``--body FILE`` or ``body:NAME[@HASH]`` in the model's place."""
-    from models.catalogue import BODY_PREFIX
-
-    from .body_studies import body_model
+    from .body_studies import body_model  # lazy: mpmath (45 ms) kept out of --help
 
     given = [a for a in (args.model, getattr(args, "motion", None)) if a is not None]
     if args.body is not None:
@@ -149,7 +149,7 @@ def _body_or_model(args, what: str) -> tuple:
 
 
 def cmd_threshold(args, session: Session) -> int:
-    from ..studies.thresholds import bracket, threshold, to_record
+    from ..studies.thresholds import bracket, threshold, to_record  # lazy: heyoka, sympy (1 s) kept out of --help
 
     params = _numeric_pairs(args.param, "param")
     body, rest = _body_or_model(args, "threshold")
@@ -200,7 +200,7 @@ def cmd_threshold(args, session: Session) -> int:
 
 def _body_threshold(args, session: Session, body, rest: list, params: dict) -> int:
     """``threshold --body FILE MOTION`` / ``threshold body:NAME MOTION`` (:mod:`.body_studies`)."""
-    from .body_studies import body_threshold, threshold_text
+    from .body_studies import body_threshold, threshold_text  # lazy: mpmath (45 ms) kept out of --help
 
     if body is None:
         raise UsageError("--theta0 picks one of a body's steady motions; give a body (--body FILE, body:NAME)")
@@ -216,7 +216,7 @@ def _body_threshold(args, session: Session, body, rest: list, params: dict) -> i
 
 
 def cmd_spindown(args, session: Session) -> int:
-    from ..studies.spindown import spindown, to_record
+    from ..studies.spindown import spindown, to_record  # lazy: sympy (0.6 s) kept out of --help
 
     params = _numeric_pairs(args.param, "param")
     theta = _decimal(args.theta, f"--theta {_shown(args.theta)}")
@@ -226,7 +226,7 @@ def cmd_spindown(args, session: Session) -> int:
     energy = "m R^2/s^2"
     try:
         if body is not None:
-            from .body_studies import body_spindown_record
+            from .body_studies import body_spindown_record  # lazy: mpmath (45 ms) kept out of --help
 
             rec, energy = body_spindown_record(body, theta, args.family, params), "M L^2/s^2"
         else:
@@ -243,9 +243,7 @@ def cmd_spindown(args, session: Session) -> int:
 
 
 def cmd_reference(args, session: Session) -> int:
-    from pathlib import Path
-
-    from .. import reference
+    from .. import reference  # lazy: heyoka, sympy (1 s) kept out of --help
 
     directory = Path(args.dir) if args.dir else reference.DIRECTORY
     say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
@@ -266,7 +264,7 @@ def cmd_reference(args, session: Session) -> int:
                 raise UsageError(f"--export needs --format csv or json (got {args.format or 'none'})")
             if args.precision is not None or args.case:
                 raise UsageError("--export writes every case; --precision and --case are for --check and --make")
-            from ..reference.export import export_set
+            from ..reference.export import export_set  # lazy: heyoka, sympy (1 s) kept out of --help
 
             written = export_set(Path(args.export), args.format, directory)
             if args.format == "json":
@@ -296,8 +294,8 @@ def cmd_reference(args, session: Session) -> int:
 
 def _body_cases(args, directory) -> list:
     """``reference --check --body NAME``: the names of every case of that body (its rolling and its Coulomb cases)."""
-    from ..scoring.casefiles import read_index
-    from .body_studies import body_model
+    from ..scoring.casefiles import read_index  # lazy: numpy (0.2 s) kept out of --help
+    from .body_studies import body_model  # lazy: mpmath (45 ms) kept out of --help
 
     if not args.check or args.case:
         raise UsageError("--body is for --check without --case: it checks every case of that body")
@@ -316,10 +314,10 @@ def _body_cases(args, directory) -> list:
 
 def _prove(args, directory, say) -> int:
     """``reference --prove``: each case of <= 10 s (or those named) enclosed, resuming stored proofs."""
-    from fractions import Fraction
+    from fractions import Fraction  # lazy: fractions (8 ms) only for 'reference --prove'; kept out of --help
 
-    from ..reference import load_set
-    from ..reference.proved import prove_case, settings_of, write_summary
+    from ..reference import load_set  # lazy: heyoka, sympy (0.9 s) kept out of --help
+    from ..reference.proved import prove_case, settings_of, write_summary  # lazy: 0.9 s kept out of --help
 
     precision = args.precision or "mp:128"
     bits = precision[3:] if precision.startswith("mp:") else ""
@@ -347,10 +345,8 @@ def _prove(args, directory, say) -> int:
 
 def cmd_score(args, session: Session) -> int:
     """``score RUN --case NAME [--min-digits D]``: the table; exit 1 below D or for a partial run."""
-    from pathlib import Path
-
-    from ..scoring import START_TOLERANCE, score
-    from ..scoring.casefiles import DIRECTORY
+    from ..scoring import START_TOLERANCE, score  # lazy: numpy (0.2 s) kept out of --help
+    from ..scoring.casefiles import DIRECTORY  # lazy: numpy (0.2 s) kept out of --help
 
     tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-9"))
     if not tol < 1:  # a tolerance of a whole scale or more (or one that overflows to inf) checks no start at all
@@ -374,10 +370,8 @@ def cmd_score(args, session: Session) -> int:
 
 
 def cmd_sweep(args, session: Session) -> int:
-    from pathlib import Path
-
-    from .. import sweep
-    from ..provenance import write_atomic
+    from .. import sweep  # lazy: heyoka, sympy (1 s) kept out of --help
+    from ..provenance import write_atomic  # lazy: verify.provenance (33 ms) kept out of --help
 
     try:
         spec = sweep.load(args.spec, store=args.store)
@@ -387,7 +381,7 @@ def cmd_sweep(args, session: Session) -> int:
                 raise UsageError("--plot draws from the store; it does not run anything (drop --dask)")
             if not Path(spec.store).exists():
                 raise UsageError(f"no store {spec.store} yet: run 'python -m verify sweep {args.spec}' first")
-            from ..sweep.plot import render
+            from ..sweep.plot import render  # lazy: heyoka, sympy (1 s) kept out of --help
 
             with sweep.Store(spec) as store:
                 rows = store.rows()
@@ -416,7 +410,7 @@ def cmd_sweep(args, session: Session) -> int:
 
 
 def _output_folder(folder: str) -> str:
-    from ..provenance import writable_folder
+    from ..provenance import writable_folder  # lazy: verify.provenance (33 ms) kept out of --help
 
     try:
         writable_folder(folder)
@@ -426,7 +420,7 @@ def _output_folder(folder: str) -> str:
 
 
 def cmd_report(args, session: Session) -> int:
-    from ..report.write import MissingResults, ReportIncomplete, read_results, write_report
+    from ..report.write import MissingResults, ReportIncomplete, read_results, write_report  # lazy: not --help
 
     if args.fresh and args.render_only:
         raise UsageError("--fresh recomputes every job and --render-only computes none; give one of them")
@@ -444,10 +438,8 @@ def cmd_report(args, session: Session) -> int:
 
 def cmd_engines(args, session: Session) -> int:
     """``engines``: the leaderboard (verify.leaderboard): every engine adapter on the reference cases."""
-    import json
-    from pathlib import Path
-
-    from ..leaderboard import CASES, adapters, merge_boards, rewrite_figure, run_board, write_board
+    from ..leaderboard import (CASES, adapters, merge_boards, rewrite_figure, run_board,  # lazy: 27 ms, not for --help
+                               write_board)
 
     if args.render_only:
         if not (Path(args.out) / "engines.json").exists():
@@ -479,10 +471,10 @@ def cmd_engines(args, session: Session) -> int:
 
 
 def cmd_bench(args, session: Session) -> int:
-    from ..bench import run_benchmarks, write_benchmarks
+    from ..bench import run_benchmarks, write_benchmarks  # lazy: heyoka, sympy (0.9 s) kept out of --help
 
     try:
-        import scipy  # noqa: F401
+        import scipy  # noqa: F401  # lazy: scipy (0.2 s), optional: only to tell whether it is installed
     except ImportError:
         raise UsageError("the benchmark compares with scipy: pip install scipy (or the project's [bench] extra)") from None
     out = _output_folder(args.out)

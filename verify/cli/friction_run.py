@@ -21,10 +21,14 @@ the body file can be written back to re-run it.
 """
 from __future__ import annotations
 
+import heyoka as hy
 import numpy as np
 
+from models import coulomb, smooth_friction as sf
 from models.smooth_friction import STATE_NAMES as SMOOTH_NAMES
 
+from ..engine.compile import symbol_map, to_heyoka
+from ..series import run_columns
 from ..series.columns import FORMAT, RunColumns, invariant_unit, state_units, suite_version
 
 #: the columns of C's horizontal velocity, in L/s
@@ -33,7 +37,7 @@ VELOCITY_COLUMNS = ("xdot", "ydot")
 
 def body_meta(body, given_as) -> dict:
     """What a run's file records of its body (``given_as``: the --body value as typed)."""
-    from models.bodies import fingerprint, model_name, to_toml
+    from models.bodies import fingerprint, model_name, to_toml  # lazy: models.bodies only for a body, not disk+coulomb
 
     return {"name": body.name, "model": model_name(body), "fingerprint": fingerprint(body), "given_as": str(given_as),
             "toml": to_toml(body)}
@@ -41,12 +45,6 @@ def body_meta(body, given_as) -> dict:
 
 def cm_velocity(sol) -> tuple:
     """(xdot, ydot) of C at every output of a Coulomb (``HybridSolution``) or smooth-law run, in the run's precision."""
-    import heyoka as hy
-
-    from models import coulomb, smooth_friction as sf
-
-    from ..engine.compile import symbol_map, to_heyoka
-
     p = sol.precision
     smooth = not hasattr(sol, "phases")
     if smooth:
@@ -75,8 +73,6 @@ def cm_velocity(sol) -> tuple:
 
 def friction_columns(sol, meta: dict) -> RunColumns:
     """The columns of a body's run with friction (module docstring); ``meta`` is added to the metadata."""
-    from ..series import run_columns
-
     vx, vy = cm_velocity(sol)
     if hasattr(sol, "phases"):
         columns = run_columns(sol, {**meta, "switch_times": [sol.precision.to_text(t) for t in sol.switch_times

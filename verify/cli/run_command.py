@@ -12,11 +12,14 @@ import argparse
 import sys
 from dataclasses import dataclass
 
+from models import get_model, sources
 from models.catalogue import ALIASES, ALL_NAMES, BODY_PREFIX, COULOMB_NAMES, STATE_NAMES
 
+from ..engine.errors import IntegrationError
 from ..guard import Session, isatty
 from .arguments import (N_EVAL_MAX, RunFailed, UsageError, _decimal, _positive, _positive_int, _precision, _shown,
                         _value_pairs)
+from .output import _dumps, _not_ok, _text, coulomb_record, coulomb_text, trajectory_record
 
 MODEL_CHOICES = ALL_NAMES + COULOMB_NAMES + tuple(ALIASES)
 #: output points when the run is kept or drawn and --n-eval is not given (a smooth curve, a frame per point)
@@ -83,7 +86,7 @@ def read_request(args) -> RunRequest:
     The start's values come first (a named start, or the model's default when neither --start nor
     --state is given), then --param and --state override them one by one.
     """
-    from .. import starts
+    from .. import starts  # lazy: verify.starts (12 ms) kept out of --help
 
     state, params = _value_pairs(args.state, "state"), _value_pairs(args.param, "param")
     if args.model is not None and args.model.startswith(BODY_PREFIX):  # body:NAME[@HASH] in a model's place: --body
@@ -156,7 +159,7 @@ def read_request(args) -> RunRequest:
 def _body_request(args, state: dict, params: dict) -> RunRequest:
     """The run of ``--body FILE``: the body's model, --state (default: tilted to the middle of its domain,
     phidot 1, psidot 10), --param I1/I3/g, --t-end (default 2 s)."""
-    from models.bodies import InvalidBody, default_start, load, model_of
+    from models.bodies import InvalidBody, default_start, load, model_of  # lazy: sympy (0.6 s) kept out of --help
 
     if args.model is not None or args.start is not None:
         raise UsageError(f"--body {args.body} is the body: drop the model {args.model or ''}{' and ' if args.model and args.start else ''}"
@@ -218,13 +221,13 @@ def _short(value) -> str:
 
 def _start_value(text: str, what: str):
     """A stored start value (a decimal, an exact fraction such as 16720/33489, an expression) read exactly."""
-    from ..expressions import read_value
+    from ..expressions import read_value  # lazy: verify.expressions (7 ms) kept out of --help
 
     return read_value(text, what)
 
 
 def _same_number(a, b) -> bool:
-    from ..expressions import read_value
+    from ..expressions import read_value  # lazy: verify.expressions (7 ms) kept out of --help
 
     return read_value(str(a)) == read_value(str(b)) or float(read_value(str(a))) == float(read_value(str(b)))
 
@@ -236,8 +239,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
     :func:`verify.engine.hybrid.solve`.  Bad input (a state outside the domain, a parameter out of
     range) is a :class:`UsageError`; a run that fails with nothing to show is :class:`RunFailed`.
     """
-    from ..engine.errors import IntegrationError
-    from .progress import _Progress
+    from .progress import _Progress  # lazy: .progress (3 ms) kept out of --help
 
     precision = _precision(args.precision)
     tol = getattr(args, "tol", None)
@@ -249,7 +251,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
                              "(no --equations paper, --tol, --high-accuracy)")
         friction = _positive(request.friction, "--friction", "0.5 (a Coulomb coefficient > 0)")
         velocity = _velocity(request.velocity)
-        from ..engine import hybrid
+        from ..engine import hybrid  # lazy: heyoka, sympy (1 s) kept out of --help
 
         try:
             return hybrid.solve(request.model, request.t_end, request.state, request.params, friction=friction,
@@ -260,9 +262,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
             if err.trajectory is None or len(err.trajectory.t) == 0:
                 raise RunFailed(f"{err} ({err.outcome})") from None
             return err.trajectory, err
-    from models import get_model, sources
-
-    from ..engine.single import solve
+    from ..engine.single import solve  # lazy: heyoka, sympy (1 s) kept out of --help
 
     if request.velocity is not None:
         raise UsageError(f"--velocity is for the rolling-and-sliding bodies ({', '.join(COULOMB_NAMES)}); "
@@ -296,8 +296,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
 
 def _run_smooth(request: RunRequest, args, precision, tol):
     """The smooth-law run of a shipped body (:func:`verify.engine.smooth.solve`)."""
-    from ..engine import smooth
-    from ..engine.errors import IntegrationError
+    from ..engine import smooth  # lazy: heyoka, sympy (0.9 s) kept out of --help
 
     if request.equations != "derived" or tol is not None or getattr(args, "high_accuracy", False):
         raise UsageError("--friction-law smooth takes the derived equations at the precision's epsilon only "
@@ -349,8 +348,8 @@ def add_trajectory_parser(sub) -> None:
 
 
 def cmd_trajectory(args, session: Session) -> int:
-    from ..series.files import RunFileError, output_path
-    from ..series.plot import picture_path
+    from ..series.files import RunFileError, output_path  # lazy: numpy (0.25 s) kept out of --help
+    from ..series.plot import picture_path  # lazy: numpy (0.25 s) kept out of --help
 
     request = read_request(args)
     try:  # before the run: nothing is computed for a file that cannot be written
@@ -363,11 +362,9 @@ def cmd_trajectory(args, session: Session) -> int:
     _precision(args.precision)
     args._n_eval = n_eval
     sol, failure = run(request, args, session, n_eval, f"trajectory {request.model}")
-    from .output import _dumps, _not_ok, coulomb_record, coulomb_text, trajectory_record, _text
-
     hybrid = hasattr(sol, "phases")
     if request.law == "smooth":
-        from .friction_run import smooth_record, smooth_text
+        from .friction_run import smooth_record, smooth_text  # lazy: sympy (0.8 s) kept out of --help
 
         record = smooth_record(sol)
         record["start"] = request.start
@@ -384,8 +381,6 @@ def cmd_trajectory(args, session: Session) -> int:
         if failure is not None:
             record["outcome"] = failure.outcome
         else:
-            from models import get_model
-
             reason = _not_ok(sol, request.body or get_model(request.model, request.equations))
             if reason is not None and record["outcome"] == "ok":
                 record["outcome"] = "failed:event_detection" if "domain" in reason else "failed:non_finite"
@@ -419,9 +414,9 @@ def _keep(sol, request: RunRequest, out, picture) -> list:
     """Write the run's file and picture (each atomically); returns the paths written."""
     if out is None and picture is None:
         return []
-    from ..series import run_columns, write_run
-    from ..series.plot import write_plot
-    from .friction_run import body_meta, friction_columns
+    from ..series import run_columns, write_run  # lazy: numpy (0.2 s) kept out of --help
+    from ..series.plot import write_plot  # lazy: numpy (0.2 s) kept out of --help
+    from .friction_run import body_meta, friction_columns  # lazy: sympy (0.5 s) kept out of --help
 
     meta = {"start_chosen": request.start, "given": request.given}
     if request.body_file is not None:
@@ -450,7 +445,7 @@ def _next_step(args, request: RunRequest, out) -> str:
 
 def _typed(args) -> list:
     """The run's options as they were given (quoted for a shell where needed)."""
-    import shlex
+    import shlex  # lazy: shlex (2 ms) kept out of --help
 
     words = ["trajectory"] + ([args.model] if args.model else [])
     for option, value in (("--body", getattr(args, "body", None)), ("--start", args.start), ("--t-end", args.t_end), ("--friction", args.friction),

@@ -25,7 +25,8 @@ import sympy as sp
 
 from models import get_model
 from models.common import PAPER_G
-from models.symbols import phidot, psidot, theta, thetadot
+from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta, thetadot
+from verify.standard import STANDARD_STATES
 
 DIGITS = 40  # digits written for computed initial values (beyond the 128-bit run's 38.5)
 
@@ -154,8 +155,6 @@ _HALF_PI = sp.pi / 2
 
 
 def _standard(model: str) -> dict:
-    from verify.standard import STANDARD_STATES
-
     return dict(STANDARD_STATES[model])
 
 
@@ -273,8 +272,6 @@ COIN = {"I1": "301/1200", "I3": "1/2", "h": "1/20"}
 
 def rolling_velocity(model_name: str, state: dict, params: dict) -> tuple:
     """The centre of mass's horizontal velocity (exact sympy) that rolling without slipping sets at ``state``."""
-    from models.symbols import STATE, STATE_NAMES
-
     model = get_model(model_name)
     subs = {p.symbol: sp.Rational(params[p.name]) if p.name in params else p.default for p in model.parameters}
     subs.update({s: sp.Rational(state.get(n, "0")) for s, n in zip(STATE, STATE_NAMES)})

@@ -27,7 +27,8 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
-from models.symbols import STATE_NAMES
+from models import get_model
+from models.symbols import STATE, STATE_NAMES
 
 from ..engine.hybrid import solve as solve_hybrid
 from ..precision import parse_precision
@@ -108,9 +109,6 @@ def run_case(c: ReferenceCase, precision: str) -> HybridRun:
 def cm_velocity(c: ReferenceCase, sol, rows: list, p) -> tuple:
     """C's horizontal velocity at the outputs ``rows`` as text at precision ``p``: the rolling model's no-slip
     velocity at the state plus the slip s (cos alpha, sin alpha) (paper Eq. 7 with u = v_C + omega x r_P)."""
-    from models import get_model
-    from models.symbols import STATE
-
     model = get_model(c.model)
     params = c.exact_params
     subs = {q.symbol: params.get(q.name, q.default) for q in model.parameters}

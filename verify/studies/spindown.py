@@ -20,7 +20,7 @@ import mpmath
 import sympy as sp
 
 from models import get_model
-from models.symbols import STATE, phidot, psidot, theta, thetadot
+from models.symbols import STATE, omega_body, phi, phidot, psidot, theta, thetadot, time_derivative, to_inertial
 
 FAMILIES = ("cm-at-rest", "zero-vertical-spin")
 MODELS = ("disk", "ring")
@@ -67,11 +67,11 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
         raise ValueError(f"unknown family {family!r}; allowed: {', '.join(FAMILIES)}")
     model = get_model(name)
     params = dict(params or {})
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
+    from verify.engine.single import resolve_parameters  # lazy: heyoka (0.4 s): bad input answers first
+    from verify.precision import parse_precision  # lazy: as the line above
 
     resolve_parameters(model, params, parse_precision("double"))  # names and ranges
-    from .thresholds import check_reading
+    from .thresholds import check_reading  # lazy: as the line above
 
     check_reading(params, "spin-down study")
     with mpmath.workdps(DPS + 10):
@@ -129,8 +129,8 @@ def body_spindown(model, theta_value: str, family: str = "cm-at-rest", params=No
     radius 1 with I3 = 2 I1: Eq. 45, k = I1) or the ring's (two rims of radius 1: Eq. 61, h = half_thickness);
     elsewhere ``paper_source`` and ``paper_phidot`` are None.
     """
-    from models.bodies import contact_vector, resolve
-    from models.steady_bodies import row1
+    from models.bodies import contact_vector, resolve  # lazy: only for a body (0.1 s)
+    from models.steady_bodies import row1  # lazy: as the line above
 
     if family not in FAMILIES:
         raise ValueError(f"unknown family {family!r}; allowed: {', '.join(FAMILIES)}")
@@ -212,9 +212,7 @@ def _quantity_functions(name: str):
     the horizontal part of r_P = CP (thetadot = 0 on the family).  w2 is the stability
     coefficient of the reduced Jacobian (verify/studies/thresholds/linear.py), valid on steady motions.
     """
-    from models.symbols import omega_body, time_derivative, to_inertial
-
-    from .thresholds import jacobian_entries
+    from .thresholds import jacobian_entries  # lazy: heyoka (0.5 s), as in spindown()
 
     model = get_model(name)
     r2 = -1
@@ -233,8 +231,6 @@ def _quantity_functions(name: str):
 
 
 def phi_symbol():
-    from models.symbols import phi
-
     return phi
 
 
@@ -276,7 +272,7 @@ def _omega3(y):
 def precision_runs(label: str, state: dict, precisions=PRECISIONS, turns: int = TURNS) -> list:
     """Integrate ``state`` (decimal strings, disk) for ``turns`` turns of phi at every precision and
     compare the final state with a reference at REFERENCE; one PrecisionRun per precision."""
-    from verify.engine.single import solve
+    from verify.engine.single import solve  # lazy: heyoka (0.4 s), as in spindown()
 
     with mpmath.workdps(80):
         t_end = mpmath.nstr(2 * mpmath.pi * turns / abs(mpmath.mpf(state["phidot"])), 40)

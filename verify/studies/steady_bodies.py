@@ -38,6 +38,7 @@ import mpmath
 import sympy as sp
 
 from models import get_model
+from models.bodies import load, shipped
 from models.steady_bodies import (
     DPS,
     domain,
@@ -394,8 +395,6 @@ def table(records) -> str:
 
 def main(argv=None) -> int:
     """``python -m verify.studies.steady_bodies [BODY ...] [--param NAME=VALUE] [--format json]``."""
-    from models.bodies import load, shipped
-
     # a curve body (models.profile_curve) is left out of the default: sympy's analysis of its trigonometric
     # polynomials ran for more than ten minutes on the egg; name it to run it
     default = [n for n in shipped() if load(n).kind != "curve"]
