@@ -83,7 +83,18 @@ def read_expression(text, what: str) -> sp.Expr:
     except SyntaxError:
         raise CurveError(f"{what} = {text!r}: not an expression (allowed: numbers, s, pi, + - * / **, "
                          f"{', '.join(FUNCTIONS)})") from None
-    return _node(tree.body, text.strip(), what, 0)
+    expr = _node(tree.body, text.strip(), what, 0)
+    # the form kept is the one its own text reads back to (sympy distributes a sign over a sum when the text
+    # is read again), so that a body written out by models.bodies.to_toml is the same Body, with the same
+    # fingerprint and model name; two passes reach it for every shipped curve
+    for _ in range(4):
+        written = sp.sstr(expr)
+        again = _node(ast.parse(written, mode="eval").body, written, what, 0)
+        if again == expr:
+            return expr
+        expr = again
+    raise CurveError(f"{what} = {text[:40]!r}: its expression has no stable written form (sympy rewrites it on every "
+                     "reading); write it expanded")
 
 
 def _node(node, text: str, what: str, depth: int) -> sp.Expr:

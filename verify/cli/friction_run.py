@@ -21,13 +21,12 @@ the body file can be written back to re-run it.
 """
 from __future__ import annotations
 
-import heyoka as hy
 import numpy as np
 
 from models import coulomb, smooth_friction as sf
 from models.smooth_friction import STATE_NAMES as SMOOTH_NAMES
 
-from ..engine.compile import symbol_map, to_heyoka
+from ..engine.row_functions import evaluate_rows
 from ..series import run_columns
 from ..series.columns import FORMAT, RunColumns, invariant_unit, state_units, suite_version
 
@@ -58,16 +57,8 @@ def cm_velocity(sol) -> tuple:
         direction = [p.zero() if np.isnan(float(a)) else a for a in sol.slip_direction]
         states = np.vstack([sol.y, p.array(list(sol.slip_speed))[None, :], p.array(direction)[None, :],
                             p.array(list(sol.work))[None, :]])
-    variables = tuple(hy.make_vars(*(f"v{i}" for i in range(11))))
-    mapping = symbol_map(rolling, variables[:8])
-    mapping.update(dict(zip(extra, variables[8:])))
-    mapping.update({q.symbol: hy.par[len(rolling.parameters) + i]
-                    for i, q in enumerate(params[len(rolling.parameters):])})
-    function = hy.cfunc([to_heyoka(e, mapping) for e in equations.cm_velocity_xy], list(variables),
-                        **p.integrator_kwargs())
-    pars = p.array([sol.params[q.name] for q in params])
-    pars, n = pars[: function.nparams], states.shape[1]  # the parameters the expressions use (mu does not enter v_C)
-    out = function(np.ascontiguousarray(states), pars=np.ascontiguousarray(np.repeat(pars[:, None], n, axis=1)))
+    # mu does not enter v_C: only the parameters the expressions read reach the cfunc
+    out = evaluate_rows(rolling, extra, params, equations.cm_velocity_xy, states, sol.params, p)
     return out[0], out[1]
 
 
