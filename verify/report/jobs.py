@@ -70,6 +70,8 @@ def registry() -> list:
     jobs += friction_jobs()
     jobs.append(Job("bodies", "bodies_job", (), ("verify.studies.bodies",),
                     tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
+    jobs.append(Job("bodies/thresholds", "body_thresholds_job", (), ("verify.studies.body_thresholds",),
+                    tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
     jobs.append(Job("tippe-top", "tippe_top_job", (), ("verify.studies.tippe.report",),
                     tuple(str(p) for p in _tippe_files())))
     index = read_index()
@@ -247,6 +249,19 @@ def bodies_job() -> JobOutput:
     from ..studies.bodies import rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(rows())
+
+
+def body_thresholds_job() -> JobOutput:
+    """The shipped bodies' steady motions and thresholds, each checked by the nonlinear equations and, for the
+    paper's bodies, by the built-in model's threshold (:mod:`verify.studies.body_thresholds`, ~60 s); a
+    disagreement fails the job."""
+    from ..studies.body_thresholds import failures, rows  # lazy: a worker loads only its job's modules
+
+    table = rows()
+    bad = failures(table)
+    if bad:
+        raise RuntimeError("body thresholds: " + "; ".join(bad))
+    return JobOutput(table)
 
 
 def tippe_top_job() -> JobOutput:

@@ -137,7 +137,7 @@ def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] 
                                                                                studies.get("dissipation")))))
     if studies.get("bodies") is not None:  # absent from a results.json made before the section
         out += guarded("Bodies of revolution", lambda: _split_h2("\n".join(
-            render_bodies(studies["bodies"], studies["reference"]["index"]))))
+            render_bodies(studies["bodies"], studies["reference"]["index"], studies.get("body_thresholds")))))
     if studies.get("tippe_top") is not None:  # absent from a results.json made before the section
         out += guarded("Tippe top", lambda: _split_h2(render_tippe(studies["tippe_top"])))
     out += _split_h2("\n".join(render_engines(engines)))

@@ -53,7 +53,8 @@ def assemble(outcomes: dict) -> dict:
                "spindown": one("studies/spindown"), "precision": one("studies/precision"), "maps": data("maps/"),
                "dissipation": one("dissipation"), "retrograde": retro,
                "reference": {"index": read_index(), "checks": checks, "proved": _proved_summary()},
-               "friction": friction, "bodies": one("bodies"), "tippe_top": one("tippe-top")}
+               "friction": friction, "bodies": one("bodies"),
+               "body_thresholds": one("bodies/thresholds"), "tippe_top": one("tippe-top")}
     failures = [{"job": name, "error": o.error} for name, o in outcomes.items() if o.status == "failed"]
     eqs, figs = missing()
     out = {"summary": None, "claims": claims, "conservation": [row for rows in data("conservation/") for row in rows],
