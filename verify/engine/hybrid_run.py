@@ -105,6 +105,27 @@ class HybridSolution:
         Trajectory._save_as)
 
 
+def grid_rows(sol, grid: list, prec) -> list:
+    """The index in the run's outputs of each grid time (its first output at that time: a switch time
+    appears twice, the end of one phase and the start of the next)."""
+    wanted = [prec.number(g) for g in grid]
+    rows, j = [], 0
+    for g in wanted:
+        while j < len(sol.t) and sol.t[j] < g:
+            j += 1
+        if j == len(sol.t) or sol.t[j] != g:
+            raise RuntimeError(f"the hybrid run has no output at the grid time {float(g):.9g} (it stopped at "
+                               f"{float(sol.t[-1]):.9g}: {sol.outcome})")
+        rows.append(j)
+    return rows
+
+
+def switch_kinds(sol) -> list:
+    """The run's switches in order: 'rolling -> sliding', 'sliding -> rolling', ..."""
+    kinds = [ph.kind for ph in sol.phases]
+    return [f"{a} -> {b}" for a, b in zip(kinds, kinds[1:])]
+
+
 class Run:
     """One run's settings and its outputs so far, phase after phase.
 

@@ -45,7 +45,7 @@ from models.symbols import STATE_NAMES
 from ..engine.hybrid import solve as solve_hybrid
 from ..engine.single import solve
 from ..precision import parse_precision
-from .coulomb_runs import grid_rows, switch_kinds
+from ..engine.hybrid_run import grid_rows, switch_kinds
 from .make import equations_fingerprint
 from .store import reduced_scale
 

@@ -31,6 +31,7 @@ from models import get_model
 from models.symbols import STATE, STATE_NAMES
 
 from ..engine.hybrid import solve as solve_hybrid
+from ..engine.hybrid_run import grid_rows, switch_kinds
 from ..precision import parse_precision
 from .cases import ReferenceCase
 
@@ -65,26 +66,6 @@ def solve_case(c: ReferenceCase, precision, times=None, state=None, params=None,
     return solve_hybrid(c.run_model, times[-1], state or c.state, params or c.exact_params,
                         friction=friction or c.friction, velocity=velocity or c.velocity, precision=precision,
                         t_eval=times)
-
-
-def grid_rows(sol, grid: list, prec) -> list:
-    """The index in the run's outputs of each grid time (its first output at that time: a switch time
-    appears twice, the end of one phase and the start of the next)."""
-    wanted = [prec.number(g) for g in grid]
-    rows, j = [], 0
-    for g in wanted:
-        while j < len(sol.t) and sol.t[j] < g:
-            j += 1
-        if j == len(sol.t) or sol.t[j] != g:
-            raise RuntimeError(f"the hybrid run has no output at the grid time {float(g):.9g} (it stopped at "
-                               f"{float(sol.t[-1]):.9g}: {sol.outcome})")
-        rows.append(j)
-    return rows
-
-
-def switch_kinds(sol) -> list:
-    kinds = [ph.kind for ph in sol.phases]
-    return [f"{a} -> {b}" for a, b in zip(kinds, kinds[1:])]
 
 
 def run_case(c: ReferenceCase, precision: str) -> HybridRun:

@@ -438,7 +438,7 @@ def _hybrid_reference(record: dict, params: dict, times: list, quad):
 
     A run that switches differently from the stored reference is not its motion: that raises."""
     from ..engine.hybrid import solve as solve_hybrid  # lazy: heyoka, the full suite only
-    from ..reference.coulomb_runs import grid_rows, switch_kinds  # lazy: as solve_hybrid
+    from ..engine.hybrid_run import grid_rows, switch_kinds  # lazy: as solve_hybrid
 
     friction = record["friction"]
     sol = solve_hybrid(friction["model"], times[-1], record["initial_state"], params, friction=friction["mu"],
