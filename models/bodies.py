@@ -375,9 +375,7 @@ def _derive(body: Body):
 def contact_vector(body: Body) -> tuple:
     """(I1, I3, r2, r3) of ``body`` with the symbols of its model (:func:`model_of`): what the sliding phase of
     a Coulomb body (:func:`models.coulomb.body`) is derived from."""
-    from .common import inertia_parameters as _ip
-
-    p1, p3 = _ip(body.I1, body.I3, "M L^2")
+    p1, p3 = inertia_parameters(body.I1, body.I3, "M L^2")
     _, symbols = _shape_parameters(body)
     return (p1.symbol, p3.symbol, *vector(body.kind, symbols))
 

@@ -41,6 +41,7 @@ curve is refused here, when it is read, rather than when it is compiled.
 from __future__ import annotations
 
 import ast
+from dataclasses import replace
 from functools import lru_cache
 
 import flint
@@ -342,8 +343,6 @@ R2, R3 = sp.Function("curve_r2")(theta), sp.Function("curve_r3")(theta)
 
 def with_contact(model, r2: sp.Expr, r3: sp.Expr):
     """``model`` (derived with :data:`R2`, :data:`R3`) with the curve's contact put in, derivatives first."""
-    from dataclasses import replace
-
     steps = [{R2.diff(theta, 2): sp.diff(r2, theta, 2), R3.diff(theta, 2): sp.diff(r3, theta, 2)},
              {R2.diff(theta): sp.diff(r2, theta), R3.diff(theta): sp.diff(r3, theta)}, {R2: r2, R3: r3}]
 

@@ -10,6 +10,7 @@ panel's drawing and camera :mod:`verify.animation.scene`; the body geometry
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import shutil
@@ -20,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import AnimationError
+from .revolution import profile_for
 from .run import AnimationRun, checked_arrays
 from . import geometry, timing
 
@@ -83,10 +85,9 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
     (matplotlib.figure.Figure, list of Panel, Clock, callable)
         The last item draws frame k and returns the changed artists.
     """
-    from matplotlib.figure import Figure  # matplotlib only when drawing: geometry imports stay cheap
+    from matplotlib.figure import Figure  # lazy: matplotlib (0.5 s) only to draw; 'animate' checks --out first
 
-    from .revolution import profile_for
-    from .scene import Panel
+    from .scene import Panel  # lazy: .scene imports matplotlib (0.5 s), as Figure above
 
     runs = list(runs) if not isinstance(runs, AnimationRun) else [runs]
     if not runs or not all(isinstance(r, AnimationRun) for r in runs):
@@ -169,8 +170,8 @@ def animate(runs, out, *, speed=None, fps=25, width_px=480, max_seconds=20.0) ->
     """
     path, ext = _check_output(out)
     fig, panels, clock, draw = build(runs, speed=speed, fps=fps, width_px=width_px, max_seconds=max_seconds)
-    from matplotlib import animation, rc_context
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib import animation, rc_context  # lazy: matplotlib (0.5 s), as in build()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # lazy: as the line above
 
     FigureCanvasAgg(fig)
     n = len(clock.times)
@@ -210,8 +211,6 @@ def _offline_html(html: str) -> str:
     """The jshtml page made offline and reproducible: the stylesheet link to the icon CDN removed
     and the icons written as characters; matplotlib's random element id (uuid4) replaced by a
     hash of the page.  A remote reference left (a newer matplotlib) raises AnimationError."""
-    import hashlib
-
     html = re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)
     for icon, text in BUTTON_TEXT.items():
         html = html.replace(f'<i class="fa {icon}"></i>', text)

@@ -45,6 +45,7 @@ from functools import lru_cache
 import numpy as np
 
 from .errors import AnimationError
+from .geometry import body_name
 from .shapes import HOOP_BAND, Mesh
 
 #: Meridians of a drawn body (its azimuthal resolution) and samples along a curved piece of profile.
@@ -100,7 +101,7 @@ def profile_of(body, params=None) -> Profile:
     AnimationError
         A length that is not positive, or a relation of the kind broken (one line).
     """
-    from models.profiles import FIELDS, RELATIONS  # lazy on purpose: sympy only for bodies from files
+    from models.profiles import FIELDS, RELATIONS  # lazy: sympy (0.25 s): bodies of revolution only
 
     params = dict(params or {})
     numbers = {}
@@ -124,9 +125,7 @@ def profile_for(model: str, body, params) -> Profile:
     """The :class:`Profile` of a run of ``model`` (``body:NAME...``): of ``body`` if given, else of the shipped
     body file NAME."""
     if body is None:
-        from models.bodies import InvalidBody, load, shipped  # lazy on purpose: sympy only for bodies from files
-
-        from .geometry import body_name
+        from models.bodies import InvalidBody, load, shipped  # lazy: sympy (0.25 s): bodies of revolution only
 
         name = body_name(model)
         if name not in shipped():
@@ -142,10 +141,10 @@ def profile_for(model: str, body, params) -> Profile:
 @lru_cache(maxsize=None)
 def _vector_function(kind: str):
     """numpy (theta, *fields) -> (r2, r3) of :func:`models.profiles.vector`: the model's own expressions."""
-    import sympy as sp  # lazy on purpose: sympy only for bodies from files
+    import sympy as sp  # lazy: sympy (0.25 s): bodies of revolution only
 
-    from models.profiles import FIELDS, vector
-    from models.symbols import theta
+    from models.profiles import FIELDS, vector  # lazy: as sympy above
+    from models.symbols import theta  # lazy: as sympy above
 
     symbols = {f: sp.Symbol(f, real=True) for f in FIELDS[kind]}
     r2, r3 = vector(kind, symbols)

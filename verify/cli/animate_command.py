@@ -13,10 +13,14 @@ Three ways to say what to draw:
 
 The file is ``--out FILE.gif|.mp4|.html`` (default ``<what>.gif`` in the current folder), checked
 before anything runs and written atomically.
+
+The command line's parser imports this module: numpy, matplotlib, sympy and heyoka are imported inside
+the functions that need them (``# lazy:``), so that ``--help`` and the listings load none of them.
 """
 from __future__ import annotations
 
 import argparse
+from dataclasses import replace
 from pathlib import Path
 
 from ..guard import Session
@@ -60,10 +64,10 @@ def add_parser(sub) -> None:
 
 
 def cmd_animate(args, session: Session) -> int:
-    from ..animation import FORMATS, AnimationError, animate
+    from ..animation import FORMATS, AnimationError, animate  # lazy: numpy, verify.animation (0.16 s): not --help
 
     runs_from = source(args)
-    from ..series.files import RunFileError, output_path
+    from ..series.files import RunFileError, output_path  # lazy: numpy (0.14 s): not --help
 
     try:
         out = output_path(args.out if args.out else f"{runs_from[1]}.gif", "--out", FORMATS)
@@ -115,7 +119,7 @@ def source(args):
 
 
 def _figure_number(text) -> int:
-    from ..figure_starts import figures_with_runs
+    from ..figure_starts import figures_with_runs  # lazy: verify.figure_starts (3 ms) only for --figure, not --help
 
     allowed = ", ".join(str(n) for n in figures_with_runs())
     try:
@@ -128,7 +132,7 @@ def _figure_number(text) -> int:
 
 
 def _figure_runs(args):
-    from ..figure_starts import panel_sides, starts_of
+    from ..figure_starts import panel_sides, starts_of  # lazy: as in _figure_number
 
     n = _figure_number(args.figure)
     sides = panel_sides(n)
@@ -156,7 +160,7 @@ def _figure_runs(args):
 def _body_source(args):
     """(runs, default file name, the start in words) of ``--body FILE|NAME``: rolling, or with --friction one law's run (the smooth
     law's with the exact Coulomb run from the same start beside it, unless --compare none)."""
-    from models.bodies import InvalidBody, load
+    from models.bodies import InvalidBody, load  # lazy: sympy (0.5 s) only for --body, not --help
 
     preset = None
     if args.friction is not None and args.velocity is None and not args.state:
@@ -186,8 +190,6 @@ def _body_source(args):
 
 
 def _with_start(request: RunRequest, words: str) -> RunRequest:
-    from dataclasses import replace
-
     return replace(request, start=request.start + words)
 
 
@@ -201,7 +203,7 @@ def _body_label(name: str, request: RunRequest) -> str:
 
 
 def _live_run(args, session, request: RunRequest, label: str, body=None):
-    from ..animation import AnimationRun
+    from ..animation import AnimationRun  # lazy: numpy, verify.animation (0.16 s): not --help
 
     n_eval = output_points(args, request, kept=True)
     n_eval = max(n_eval, N_EVAL_ANIMATION) if args.n_eval is None else n_eval
@@ -216,7 +218,7 @@ def _live_run(args, session, request: RunRequest, label: str, body=None):
 def _slip(sol, request: RunRequest) -> dict:
     """The contact's slip (inertial x, y) and phase of a run with friction: the hybrid's phases and (s, alpha),
     or the smooth law's (slip_e1, slip_h) in (e1, h) with its phase by |u| against eps; {} for a rolling run."""
-    import numpy as np  # lazy on purpose: the parser imports this module, and listings import nothing heavy
+    import numpy as np  # lazy: numpy (0.13 s): not --help
     if hasattr(sol, "phases"):  # exact Coulomb (verify.engine.hybrid): s and alpha where sliding, 0 and NaN rolling
         speed = np.asarray(sol.slip_speed, float)
         alpha = np.nan_to_num(np.asarray(sol.slip_direction, float))
@@ -233,10 +235,10 @@ def _slip(sol, request: RunRequest) -> dict:
 
 
 def _file_run(path: str):
-    import numpy as np  # lazy on purpose: the parser imports this module, and listings import nothing heavy
+    import numpy as np  # lazy: numpy (0.13 s): not --help
 
-    from ..animation import AnimationRun
-    from ..series.files import RunFileError, read_run
+    from ..animation import AnimationRun  # lazy: numpy, verify.animation (0.16 s): not --help
+    from ..series.files import RunFileError, read_run  # lazy: numpy (0.14 s): not --help
 
     try:
         columns = read_run(path)
@@ -252,7 +254,7 @@ def _file_run(path: str):
                  "phase": np.asarray(columns.values["phase"], dtype=str)}
     given = (columns.meta.get("given") or {}).get("body")
     if isinstance(model, str) and model.startswith("body:") and given and Path(given).suffix:
-        from models.bodies import InvalidBody, load
+        from models.bodies import InvalidBody, load  # lazy: sympy (0.5 s) only for a body file's run, not --help
 
         try:  # a body file that is not shipped: the file the run was made from
             extra["body"] = load(given)

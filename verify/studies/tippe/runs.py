@@ -32,9 +32,13 @@ V_lambda has lost exactly E0 - V_lambda(theta*) (:mod:`.theory`).  Exact Coulomb
 """
 from __future__ import annotations
 
-
 import numpy as np
+import sympy as sp
 
+from models import get_model
+from models.symbols import STATE
+
+from ...engine import hybrid, smooth
 from . import theory
 
 #: theta beyond which the top counts as turned over (rad), and the margin of C's inverted height (units of R)
@@ -96,8 +100,6 @@ def _stopped(m: dict, outcome: str) -> dict:
 
 def smooth_case(body: str, spin, eps, t_end="40", n_eval: int = 4001, precision: str = "double") -> dict:
     """One smooth-law run of the standard start: measures, E + W and Jellett's drift (in eps), steps."""
-    from ...engine import smooth
-
     top = theory.top(body)
     sol = smooth.solve(body, t_end, {"theta": START_TILT, "psidot": str(spin)}, friction=FRICTION, slip_scale=str(eps),
                        velocity=("0", "0"), n_eval=n_eval, precision=precision)
@@ -112,8 +114,6 @@ def smooth_case(body: str, spin, eps, t_end="40", n_eval: int = 4001, precision:
 
 def coulomb_case(body: str, spin, t_end="5", n_eval: int = 1001) -> dict:
     """One exact-Coulomb run (the hybrid) of the standard start: phases, measures, E + W and Jellett (in eps)."""
-    from ...engine import hybrid
-
     top = theory.top(body)
     sol = hybrid.solve(f"body:{body}+coulomb", t_end, {"theta": START_TILT, "psidot": str(spin)}, friction=FRICTION,
                        velocity=("0", "0"), n_eval=n_eval)
@@ -128,11 +128,6 @@ def coulomb_case(body: str, spin, t_end="5", n_eval: int = 1001) -> dict:
 
 def jellett_drift_in_eps(body: str, y, params) -> float:
     """max |lambda - lambda(0)| over eps (double) times lambda's term scale up to each output, on 8-row states."""
-    import sympy as sp
-
-    from models import get_model
-    from models.symbols import STATE
-
     model = get_model(f"body:{body}")
     expr = next(i.expr for i in model.invariants if i.name == "jellett")
     values = {p.symbol: float(params[p.name]) for p in model.parameters}
