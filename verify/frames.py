@@ -34,7 +34,7 @@ Form (b) is defined for the bodies on the plane: ``disk``, ``ring``, ``hurricane
 psi = phi; neither has a contact on the plane, and their runs are read in form (a) only.)
 
 The numeric parts (the columns, :func:`detect`, (b) -> (a), the contact point, the rotation's
-defect) live in :mod:`verify.scoring.geometry`, numpy only, so that scoring needs no sympy; they
+defect) live in :mod:`verify.contact_geometry`, numpy only, so that scoring needs no sympy; they
 are re-exported here and tested against the expressions of this module.
 """
 from __future__ import annotations
@@ -47,7 +47,7 @@ import sympy as sp
 from models import disk, get_model, hurricane, ring
 from models.symbols import STATE, STATE_NAMES, frame_vectors, omega_body, phi, psi, theta, thetadot, to_inertial
 
-from .scoring.geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTION, QUATERNION,  # noqa: F401
+from .contact_geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTION, QUATERNION,  # noqa: F401
                                QUATERNION_FORM, b_to_euler, contact_point, detect, frame, matrix_from_quaternion,
                                rotation_defect)
 

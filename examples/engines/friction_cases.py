@@ -16,7 +16,7 @@ at t = 0, a skid).
   set, 0 on both cases: theta' = 0 at t = 0).
 * :func:`slip_speed`, :func:`slip_summary` -- the contact point's horizontal velocity
   u = v_C + omega x r_P along a run in form (b) (r_P = -e2 - h e3, the coin's rim edge; the
-  scorer's own geometry, :mod:`verify.scoring.geometry`), and where the run slides: every interval
+  scorer's own geometry, :mod:`verify.contact_geometry`), and where the run slides: every interval
   where |u| exceeds :data:`SLIP_THRESHOLD`, its end taken as the stick.
 * :func:`reference_switches` -- where the reference slips and sticks (the reference file's switch times
   when it has them, else this suite's hybrid run of the case in double).
@@ -48,7 +48,7 @@ from verify.engine.hybrid import solve
 from verify.frames import euler_to_b
 from verify.reference.cases import case
 from verify.reference.store import DIRECTORY
-from verify.scoring.geometry import b_to_euler, contact_vector
+from verify.contact_geometry import b_to_euler, contact_vector
 
 #: Contact slip speed (R/s, length unit per second) above which a run is said to slide (see the module).
 SLIP_THRESHOLD = 0.1
@@ -116,7 +116,7 @@ def slip_speed(columns: dict, record: dict) -> np.ndarray:
     """|horizontal velocity of the contact point| along a run in form (b) (matrix or quaternion columns).
 
     u = v_C + omega x r_P with r_P = -e2 - h e3 (the coin; h = 0 for the disk), the scorer's geometry
-    (:func:`verify.scoring.geometry.contact_vector`); its vertical part is the height constraint's, not slip.
+    (:func:`verify.contact_geometry.contact_vector`); its vertical part is the height constraint's, not slip.
     """
     cols = {k: np.asarray(v, float) for k, v in columns.items()}
     state, _, w = b_to_euler(cols)

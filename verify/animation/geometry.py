@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..scoring.geometry import CONTACT
+from ..contact_geometry import CONTACT
 from .errors import AnimationError
 
 #: Which body each drawable model is.  The effective model (paper Eq. 96) is left out: it
@@ -114,7 +114,7 @@ def rotation(theta, phi, psi) -> np.ndarray:
 def contact_radii(kind: str, theta, params: dict) -> tuple:
     """(r2, r3) of r_P = r2 e2 + r3 e3 (paper Eqs. 7, 47, 63); arrays of theta's shape.
 
-    The scorer's numbers (:data:`verify.scoring.geometry.CONTACT`): one definition of each body's contact."""
+    The scorer's numbers (:data:`verify.contact_geometry.CONTACT`): one definition of each body's contact."""
     if kind not in ("disk", "ring", "hurricane"):
         raise AnimationError(f"body {kind!r} has no contact on the plane; allowed: disk, ring, hurricane")
     theta = np.asarray(theta, float)

@@ -45,7 +45,7 @@ import mpmath
 import numpy as np
 
 from .casefiles import DIRECTORY, load_set
-from .geometry import CONTACT, STATE_NAMES, b_to_euler, contact_point, energy as state_energy, rotation_defect
+from ..contact_geometry import CONTACT, STATE_NAMES, b_to_euler, contact_point, energy as state_energy, rotation_defect
 from .runs import InvalidRun, exact_decimal, read_run
 
 DIGITS_RESOLVED = -math.log10(2.0 ** -53)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .geometry import FORMS, detect
+from ..contact_geometry import FORMS, detect
 
 
 #: The first line of the suite's own run files (verify.series.columns.FORMAT, written out: scoring stays light).
