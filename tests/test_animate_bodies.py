@@ -37,6 +37,10 @@ FINE = {"meridians": 360, "samples": 180}
 SMALL = ["--width", "96", "--max-seconds", "1", "--fps", "10"]
 
 
+#: the shipped bodies animate draws: all but a curve (the egg), which it refuses in one line (tested below)
+DRAWN = [n for n in shipped() if load(n).kind != "curve"]
+
+
 def _states(profile_domain, n, seed):
     rng = np.random.default_rng(seed)
     lo, hi = profile_domain
@@ -73,7 +77,7 @@ def _placed_mesh(profile, state, mesh, centre_height=None):
     return mesh.placed(r, np.array([x, y, float(z)]))[0]
 
 
-@pytest.mark.parametrize("name", shipped())
+@pytest.mark.parametrize("name", DRAWN)
 @pytest.mark.parametrize("resolution", ["default", "fine"])
 def test_drawn_body_touches_the_plane_at_the_contact_point(name, resolution):
     body = load(name)
@@ -210,7 +214,7 @@ def _synthetic(name, n=101, seconds=0.1):
                         slip_y=np.sin(t), phase=np.full(n, "sliding"))
 
 
-@pytest.mark.parametrize("name", shipped())
+@pytest.mark.parametrize("name", DRAWN)
 def test_every_shipped_body_renders_a_frame(name):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -269,7 +273,7 @@ def test_a_body_file_that_is_not_shipped_and_its_saved_run(capsys, tmp_path):
     (["disk", "--compare", "coulomb", "--out", "{d}/x.gif"], "--compare coulomb is for"),
     (["--body", "tippe-top", "--friction", "0.3", "--friction-law", "smooth", "--out", "{d}/x.gif"], "--slip-scale"),
     (["--body", "tippe-top", "--friction", "-1", "--out", "{d}/x.gif"], "--friction"),
-    (["--body", "{d}/b.toml", "--friction", "0.3", "--out", "{d}/x.gif"], "shipped bodies only"),
+    (["--body", "egg", "--out", "{d}/x.gif"], "is not drawn yet"),
     (["--body", "tippe-top", "--state", "theta=4", "--t-end", "0.1", "--out", "{d}/x.gif"], "theta"),
     (["--body", "tippe-top", "--out", "{d}/x.avi"], ".avi"),
 ])

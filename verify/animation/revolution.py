@@ -103,6 +103,9 @@ def profile_of(body, params=None) -> Profile:
     """
     from models.profiles import FIELDS, RELATIONS  # lazy: sympy (0.25 s): bodies of revolution only
 
+    if body.kind == "curve":
+        raise AnimationError(f"body {body.name!r}: kind = 'curve' is not drawn yet; allowed kinds: "
+                             f"{', '.join(k for k in FIELDS if k != 'curve')} (a curve's mesh from r(s), z(s) is not built)")
     params = dict(params or {})
     numbers = {}
     for field, exact in body.profile:
