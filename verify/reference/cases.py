@@ -258,7 +258,7 @@ def _cases() -> tuple:
         ReferenceCase("oblate-ellipsoid-1", "body:oblate-ellipsoid", {"theta": "0.8", "phidot": "3", "psidot": "15"},
                       "1", 32, "wild", "body file models/bodies/oblate-ellipsoid.toml",
                       "a uniform oblate ellipsoid of revolution (1 x 1/2) rolling with nutation"),
-        ReferenceCase("tippe-top-coulomb-1", "body:tippe-top", {"theta": "0.1", "psidot": "200"}, "0.125", 32, "wild",
+        ReferenceCase("tippe-top-coulomb-1", "body:tippe-top", {"theta": "0.1", "psidot": "200"}, "1", 32, "wild",
                       "body file models/bodies/tippe-top.toml; the start of the tippe-top study (docs/tippe-top.md)",
                       "the tippe top spun at 200 s^-1 about its axis tilted 0.1 rad, C at rest, on a table with exact "
                       "Coulomb friction mu = 0.3: the contact slides, sticks near t = 0.024 and the top rolls (it "
