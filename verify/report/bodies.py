@@ -29,7 +29,8 @@ def render_markdown(rows: list, index: dict, thresholds=None) -> list:
               "|---|---|---|---|---|---:|---|"]
     for r in rows:
         run = r["run"]
-        profile = f"{r['kind']}: " + ", ".join(f"{k} = {v}" for k, v in r["profile"].items())
+        # a curve's expressions in code spans: their '*' would otherwise be read as emphasis
+        profile = f"{r['kind']}: " + ", ".join(f"{k} = `{v}`" if "*" in v else f"{k} = {v}" for k, v in r["profile"].items())
         domain = f"({r['domain'][0]}, {r['domain'][1]}) ({r['domain'][2]} / {r['domain'][3]})"
         drift = ", ".join(f"{k} {v:g}" for k, v in run["drift_in_eps"].items())
         lines.append(f"| {r['name']} | {profile} | {r['I1']}, {r['I3']} | {domain} | {run['outcome']} | "
