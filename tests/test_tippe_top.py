@@ -273,7 +273,11 @@ def test_the_study_agrees_with_the_energy_jellett_prediction_and_the_inversion_t
         p = result["predictions"][f"{r['body']}@{r['spin']:g}"]
         if r["eps"] >= 0.1:  # at 0.03 the inversion takes longer than the run (the 1/eps branch)
             assert r["verdict"] == runs.expected_verdict(p["verdict"]), r
-        if p["verdict"] == "tilted":  # 40-s runs settle to the docs' 4 digits (the bound argued in the test above)
+        if p["verdict"] == "tilted":
+            # end_theta is the mean of the last tenth; the test above bounds it by the tail's own spread (the energy
+            # theorem). Here only a coarse cross-check of the study's table: measured |mean - theta*| is 2e-5 (n = 100,
+            # still swinging +-0.008 rad) and the 4 printed digits elsewhere (docs/tippe-top.md); 5e-3 is well under the 0.2 rad that separates the
+            # minima of V_lambda compared in the table (0.889, 1.837, 1.949), so a run settled at the wrong one fails
             assert abs(r["end_theta"] - p["theta"]) < 5e-3
     times = {r["eps"]: r["t_theta"] for r in result["smooth"] if r["spin"] == 200 and r["body"] == "tippe-top"}
     fastest = min((t, e) for e, t in times.items() if t is not None)[1]
