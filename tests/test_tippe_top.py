@@ -276,8 +276,9 @@ def test_the_study_agrees_with_the_energy_jellett_prediction_and_the_inversion_t
         if p["verdict"] == "tilted":
             # end_theta is the mean of the last tenth; the test above bounds it by the tail's own spread (the energy
             # theorem). Here only a coarse cross-check of the study's table: measured |mean - theta*| is 2e-5 (n = 100,
-            # still swinging +-0.008 rad) and the 4 printed digits elsewhere (docs/tippe-top.md); 5e-3 is well under the 0.2 rad that separates the
-            # minima of V_lambda compared in the table (0.889, 1.837, 1.949), so a run settled at the wrong one fails
+            # still swinging +-0.008 rad) and the 4 printed digits elsewhere (docs/tippe-top.md); 5e-3 is far below the
+            # distance to any other end a run could reach (upright near 0, inverted near pi, the nearest other body's
+            # minimum 0.11 rad away), so a run settled in the wrong state fails
             assert abs(r["end_theta"] - p["theta"]) < 5e-3
     times = {r["eps"]: r["t_theta"] for r in result["smooth"] if r["spin"] == 200 and r["body"] == "tippe-top"}
     fastest = min((t, e) for e, t in times.items() if t is not None)[1]
