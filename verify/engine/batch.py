@@ -35,6 +35,7 @@ the chunking.
 from __future__ import annotations
 
 import copy
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from types import SimpleNamespace
@@ -43,7 +44,7 @@ from typing import Iterator, Optional
 import heyoka as hy
 import numpy as np
 
-from . import heyoka_log
+from . import call_paths, heyoka_log
 from .problem import fastest_rate, step_cap  # noqa: F401 - the step cap, as solve() caps its steps
 
 
@@ -179,45 +180,49 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
     parameters, n_lanes a multiple of the template's batch size (:func:`pad_lanes`).  ``chunk``
     batches run per call (None: all at once), so that only their output is held at once.
 
-    Each thread copies the template once and reuses its copy for a contiguous share of the
-    batches (time, state, parameters and event cooldowns reset for each): heyoka's
-    ``ensemble_propagate_grid_batch`` copies the template for every batch, holding the GIL
-    (~1 ms for an integrator with Python event callbacks), which serialises the threads.  A
-    batch's result depends on its own lanes only, so the sharing changes no bit.
+    Each thread copies the template once and reuses its copy for the batches it takes from a
+    shared queue, in index order (time, state, parameters and event cooldowns reset for each):
+    heyoka's ``ensemble_propagate_grid_batch`` copies the template for every batch, holding the
+    GIL (~1 ms for an integrator with Python event callbacks), which serialises the threads; a
+    queue keeps both threads busy when batches cost unequal times (fixed shares left one idle).
+    Each thread calls heyoka along the path it found fastest (:mod:`.call_paths`).  A batch's
+    result depends on its own lanes only, so neither the sharing nor the path changes a bit.
     """
     bs = template.batch_size
     n_batches = states.shape[1] // bs
     chunk = n_batches if chunk is None else chunk
-    options = {}
-    if max_delta_t is not None:
-        options["max_delta_t"] = max_delta_t
-    if max_steps is not None:
-        options["max_steps"] = max_steps
     grid_lanes = np.ascontiguousarray(np.repeat(np.asarray(grid, float)[:, None], bs, axis=1))
     workers = max(1, int(threads))
     copies = [copy.deepcopy(template) for _ in range(workers)]
+    choosers = [call_paths.PathChooser() for _ in range(workers)]
 
-    def share(worker: int, batches) -> list:
-        ta, out = copies[worker], []
-        for b in batches:
-            cols = slice(b * bs, (b + 1) * bs)
-            ta.set_time(0.0)
-            if ta.with_events:
-                ta.reset_cooldowns()
-            ta.state[:] = states[:, cols]
-            ta.pars[:] = pars[:, cols]
-            output = ta.propagate_grid(grid_lanes, **options)[-1]
-            local = SimpleNamespace(time=ta.time.copy(), state=ta.state.copy(), pars=ta.pars.copy(),
-                                    propagate_res=list(ta.propagate_res), batch_size=bs)
-            out.append(Batch(b, local, output))
-        return out
+    def one(ta, chooser, b: int) -> Batch:
+        cols = slice(b * bs, (b + 1) * bs)
+        ta.set_time(0.0)
+        if ta.with_events:
+            ta.reset_cooldowns()
+        ta.state[:] = states[:, cols]
+        ta.pars[:] = pars[:, cols]
+        output = call_paths.timed_propagate_grid(chooser, ta, grid_lanes, max_delta_t, max_steps)[-1]
+        local = SimpleNamespace(time=ta.time.copy(), state=ta.state.copy(), pars=ta.pars.copy(),
+                                propagate_res=list(ta.propagate_res), batch_size=bs)
+        return Batch(b, local, output)
+
+    def share(worker: int, queue, lock) -> list:
+        out = []
+        while True:
+            with lock:
+                b = next(queue, None)
+            if b is None:
+                return out
+            out.append(one(copies[worker], choosers[worker], b))
 
     with ThreadPoolExecutor(max_workers=workers) as pool:
         for first in range(0, n_batches, chunk):
-            shares = np.array_split(np.arange(first, min(first + chunk, n_batches)), workers)
+            queue, lock = iter(range(first, min(first + chunk, n_batches))), threading.Lock()
             with heyoka_log.collect() as messages:
-                parts = list(pool.map(share, range(workers), shares))
-            yield [b for part in parts for b in part], list(messages)
+                parts = list(pool.map(share, range(workers), [queue] * workers, [lock] * workers))
+            yield sorted((b for part in parts for b in part), key=lambda b: b.index), list(messages)
 
 
 def alone(template, grid, state_col, pars_col, max_delta_t=None, max_steps=None) -> tuple:
