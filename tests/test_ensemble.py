@@ -120,7 +120,8 @@ def test_a_lane_that_breaks_a_guard_is_reported_failed(monkeypatch):
         out, final = _run(ens, states, pars)
         model_pars = ens.model_columns({"k": 0.25, "g": 980.0}, n)
         reason = ens.record(final, "reason")[:n]
-        return ens.guard(GRID, out[:, :, :n], model_pars, reason != 0, ens.record(final, "t_stop")[:n])
+        samples = np.ascontiguousarray(np.transpose(out[:, :, :n], (1, 2, 0)))  # (states, lanes, grid)
+        return ens.guard(GRID, samples, model_pars, reason != 0, ens.record(final, "t_stop")[:n])
 
     assert guarded() == [None] * n  # the events froze them: nothing to flag
     monkeypatch.setattr(batch.Freeze, "__call__", lambda self, ta, d_sgn, lane: True)

@@ -313,8 +313,8 @@ def test_energy_drift_column_sees_unaccounted_work(tmp_path, monkeypatch):
     reduce = engine._reduce
 
     def without_work(spec, ens, indices, grid, samples, *rest):
-        samples = samples.copy()  # (grid, states, lanes)
-        samples[:, ens.lanes.row("W")] = 0.0
+        samples = samples.copy()  # (states, lanes, grid)
+        samples[ens.lanes.row("W")] = 0.0
         return reduce(spec, ens, indices, grid, samples, *rest)
 
     monkeypatch.setattr(engine, "_reduce", without_work)

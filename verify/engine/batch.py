@@ -8,7 +8,7 @@ maps (:mod:`verify.studies.maps`) are its users.
 * :func:`propagate_grid` runs every lane on a common output grid, ``chunk`` batches per ensemble
   call, and yields each chunk's results as :class:`Batch` objects with heyoka's log messages;
 * :func:`lane_failures` and :func:`alone` detect and isolate the lanes that failed;
-* :func:`per_run` evaluates a compiled function over the samples of many runs at once with the
+* :func:`per_lane` evaluates a compiled function over the samples of many runs at once with the
   bits of one call per run;
 * :func:`fastest_rate` and :func:`step_cap` (from :mod:`.problem`): the step cap, one radian of the fastest rate.
 
@@ -261,7 +261,7 @@ def lane_failure(batch: Batch, lane: int, lanes: Lanes, warned) -> Optional[tupl
 
 @dataclass(frozen=True)
 class ScalarTwin:
-    """A compiled function and its scalar build: evaluated by :func:`per_run`."""
+    """A compiled function and its scalar build: evaluated by :func:`per_lane`."""
 
     simd: object
     scalar: object
@@ -271,25 +271,41 @@ class ScalarTwin:
         return cls(hy.cfunc(outputs, variables), hy.cfunc(outputs, variables, batch_size=1))
 
 
-def per_run(fn: ScalarTwin, points: np.ndarray, pars: Optional[np.ndarray], lengths: np.ndarray) -> np.ndarray:
+def per_lane(fn: ScalarTwin, points: np.ndarray, pars: Optional[np.ndarray], lengths) -> np.ndarray:
     """``fn`` at the samples of many runs, bit for bit as one call per run would give them.
 
-    ``points`` (n_inputs, sum(lengths)) holds the runs' samples one run after the other.  heyoka's
-    compiled functions evaluate whole SIMD groups of points vectorised and the points left over
-    one by one with scalar code, whose transcendental functions can differ in the last bit; so each
-    run's whole groups are evaluated together by the SIMD build and every run's leftover points by
-    the scalar build, as a call per run would.
+    ``points`` (n_inputs, lanes, n_samples) holds lane l's samples in order, its run the first
+    ``lengths[l]``; ``pars`` (n_pars, lanes) its parameters (or None).  heyoka's compiled
+    functions evaluate whole SIMD groups of points vectorised and the points left over one by one
+    with scalar code, whose transcendental functions can differ in the last bit, and a SIMD lane's
+    value does not depend on its neighbours.  So every point is evaluated by the SIMD build in one
+    call (padded to whole groups) and each run's leftover points -- its last ``length % width``,
+    which a call per run gives to scalar code -- again by the scalar build.
+
+    Returns (n_outputs, lanes, n_samples); the values past a run's length belong to no run.
     """
+    n_in, lanes, n_samples = points.shape
     lengths = np.asarray(lengths, dtype=np.int64)
     width = int(fn.simd.batch_size)
-    starts = np.cumsum(lengths) - lengths
-    position = np.arange(int(lengths.sum())) - np.repeat(starts, lengths)
-    tail = position >= np.repeat(lengths // width * width, lengths)
-    out = np.empty((int(fn.simd.nouts), points.shape[1]))
-    for build, cols in ((fn.simd, ~tail), (fn.scalar, tail)):
-        if not cols.any():
-            continue
-        kwargs = {} if pars is None or build.nparams == 0 else {
-            "pars": np.ascontiguousarray(pars[: build.nparams][:, cols])}
-        out[:, cols] = build(np.ascontiguousarray(points[:, cols]), **kwargs)
-    return out
+    total = lanes * n_samples
+    padded = total + (-total) % width
+    if padded == total and points.flags.c_contiguous:
+        flat = points.reshape(n_in, total)  # no copy: whole groups already (lanes a multiple of the width)
+    else:
+        flat = np.empty((n_in, padded))
+        flat[:, :total] = points.reshape(n_in, total)
+        flat[:, total:] = flat[:, total - 1:total]
+    kwargs = {}
+    if pars is not None and fn.simd.nparams:
+        per_point = np.empty((fn.simd.nparams, padded))
+        per_point[:, :total] = np.repeat(pars[: fn.simd.nparams], n_samples, axis=1)
+        per_point[:, total:] = per_point[:, total - 1:total]
+        kwargs = {"pars": per_point}
+    out = fn.simd(flat, **kwargs)
+    tails = lengths % width
+    tail = np.repeat(np.arange(lanes) * n_samples + lengths - tails, tails) + (
+        np.arange(int(tails.sum())) - np.repeat(np.cumsum(tails) - tails, tails))
+    if tail.size:
+        scalar = {"pars": np.ascontiguousarray(kwargs["pars"][: fn.scalar.nparams, tail])} if kwargs else {}
+        out[:, tail] = fn.scalar(np.ascontiguousarray(flat[:, tail]), **scalar)
+    return out[:, :total].reshape(out.shape[0], lanes, n_samples)

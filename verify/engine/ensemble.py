@@ -15,7 +15,7 @@ An :class:`Ensemble` holds what every batch run of a model shares, resolved once
   ``theta_stop``, at N <= 0 or needing more than its friction coefficient: an event that should
   have stopped it and did not).  A lane that breaks one is reported failed, never kept;
 * the compiled functions the reductions read (:meth:`Ensemble.energy_terms`, the normal force,
-  the friction needed), evaluated bit for bit as one call per run (:func:`verify.engine.batch.per_run`).
+  the friction needed), evaluated bit for bit as one call per run (:func:`verify.engine.batch.per_lane`).
 
 The sweeps (:mod:`verify.sweep.engine`) and the stability maps (:mod:`verify.studies.map_runs`) are
 its clients: neither imports heyoka.
@@ -180,7 +180,7 @@ class Ensemble:
     def guard(self, grid, samples, model_pars, stopped, t_stop, theta_stop=None, friction=None) -> list:
         """Per lane, (outcome, time) of the first sample that should not exist, or None.
 
-        ``samples`` (grid, states, lanes) of the full form.  Every sample before the lane's stop must
+        ``samples`` (states, lanes, grid) of the full form.  Every sample before the lane's stop must
         be finite, inside the domain, above ``theta_stop``, at N > 0 and, with a coefficient
         (``friction``, per lane), need no more than it (within
         :data:`verify.engine.failures.SLIP_SLACK_EPS`, as ``solve``'s guard); at a sample on the stop
@@ -188,48 +188,32 @@ class Ensemble:
         strictly before it.  ``failed:non_finite`` for a sample that is not finite,
         ``failed:event_detection`` for the others (an event that should have stopped the lane).
         """
-        n_lanes = samples.shape[2]
+        n_lanes = samples.shape[1]
         checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), len(grid))
-        inside = np.arange(len(grid))[:, None] < checked[None, :]  # (grid, lanes)
-        finite = np.isfinite(samples[:, :8, :]).all(axis=1) | ~inside
+        inside = np.arange(len(grid))[None, :] < checked[:, None]  # (lanes, grid)
+        finite = np.isfinite(samples[:8]).all(axis=0) | ~inside
         out = [None] * n_lanes
-        for k in np.flatnonzero(~finite.all(axis=0)):
-            out[k] = ("failed:non_finite", float(grid[np.argmin(finite[:, k])]))
+        for k in np.flatnonzero(~finite.all(axis=1)):
+            out[k] = ("failed:non_finite", float(grid[np.argmin(finite[k])]))
         lo, hi = float(self.model.domain.theta_min), float(self.model.domain.theta_max)
-        th = samples[:, TH, :]
+        th = samples[TH]
         with np.errstate(invalid="ignore"):
             ok = (lo < th) & (th < hi)
             if theta_stop is not None:
                 ok &= th > theta_stop
-        finite_lanes = finite.all(axis=0)
+        finite_lanes = finite.all(axis=1)
         if self.normal_force is not None and finite_lanes.any():
-            lanes = np.flatnonzero(finite_lanes)
-            lengths = checked[lanes]
-            points = segments_of(samples[:, :8, lanes], lengths)
-            normal = batch.per_run(self.normal_force, points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
-                                   lengths)[0]
-            positive = np.ones((len(lanes), len(grid)), bool)
-            positive[np.arange(len(grid))[None, :] < lengths[:, None]] = normal > 0
-            ok[:, lanes] &= positive.T
-            if friction is not None:
-                need = batch.per_run(self.friction_required, points.T,
-                                     np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)[1]
-                mu = np.repeat(friction[lanes], lengths)
-                within = np.ones((len(lanes), len(grid)), bool)
-                with np.errstate(invalid="ignore"):  # NaN where N <= 0, refused above
-                    within[np.arange(len(grid))[None, :] < lengths[:, None]] = ~(
-                        need > mu + SLIP_SLACK_EPS * np.finfo(float).eps * np.maximum(1.0, mu))
-                ok[:, lanes] &= within.T
+            # every lane is evaluated (a lane with a non-finite sample is judged above, its values unread)
+            with np.errstate(invalid="ignore"):
+                ok &= batch.per_lane(self.normal_force, samples[:8], model_pars, checked)[0] > 0
+                if friction is not None:
+                    need = batch.per_lane(self.friction_required, samples[:8], model_pars, checked)[1]
+                    mu = np.asarray(friction, dtype=float)[:, None]  # NaN where N <= 0, refused above
+                    ok &= ~(need > mu + SLIP_SLACK_EPS * np.finfo(float).eps * np.maximum(1.0, mu))
         ok |= ~inside
-        for k in np.flatnonzero(finite_lanes & ~ok.all(axis=0)):
-            out[k] = ("failed:event_detection", float(grid[np.argmin(ok[:, k])]))
+        for k in np.flatnonzero(finite_lanes & ~ok.all(axis=1)):
+            out[k] = ("failed:event_detection", float(grid[np.argmin(ok[k])]))
         return out
-
-
-def segments_of(samples, lengths) -> np.ndarray:
-    """The first ``lengths[l]`` samples of every lane l, lane after lane: (sum(lengths), n_states)."""
-    lanes = np.moveaxis(samples, 2, 0)  # (lanes, grid, states)
-    return lanes[np.arange(samples.shape[0])[None, :] < np.asarray(lengths)[:, None]]
 
 
 def ensemble(model, form: str, batch_size: int, cooldown: float, stop: bool = False, friction: bool = False) -> Ensemble:

@@ -79,17 +79,21 @@ def _initial_conditions(model, motion, rates, tilts, params, cap):
     y0 = np.zeros((4, n))
     bounds = np.zeros((2, n))
     with mpmath.workdps(40):
+        # per rate once: the steady angle (40 digits), the bounds and the rates in double
+        th0s = [mpmath.mpf(s["theta"]) for s in steady]
+        ends = [(max(float(th0 - cap), tmin), min(float(th0 + cap), tmax)) for th0 in th0s]
+        rates_of = [(float(mpmath.mpf(s["phidot"])), float(mpmath.mpf(s["psidot"]))) for s in steady]
         for i, tilt in enumerate(tilts):
-            for j, s in enumerate(steady):
+            dt = mpmath.mpf(float(tilt))
+            for j, th0 in enumerate(th0s):
                 k = i * len(rates) + j
-                th0 = mpmath.mpf(s["theta"])
-                lo, hi = max(float(th0 - cap), tmin), min(float(th0 + cap), tmax)
-                start = float(th0 + mpmath.mpf(float(tilt)))
+                lo, hi = ends[j]
+                start = float(th0 + dt)  # pi/2 + tilt rounded once
                 if not lo < start < hi:
                     raise ValueError(f"tilt {float(tilt)!r} at rate {float(rates[j])!r} starts theta at {start!r}, "
                                      f"outside ({lo!r}, {hi!r}); allowed: tilts below the cap {cap} that keep "
                                      f"theta inside the domain of {name!r}")
-                y0[:, k] = (start, 0.0, float(mpmath.mpf(s["phidot"])), float(mpmath.mpf(s["psidot"])))
+                y0[:, k] = (start, 0.0, *rates_of[j])
                 bounds[:, k] = (lo, hi)
     return y0, bounds, ths
 

@@ -79,7 +79,7 @@ from models.steady import steady_state
 from models.symbols import STATE_NAMES
 
 from ..engine import batch, validation
-from ..engine.ensemble import Ensemble, ensemble, g_of, resolve, segments_of
+from ..engine.ensemble import Ensemble, ensemble, g_of, resolve
 from ..engine.lanes import simd_width
 from ..engine.single import COLLAPSE_FACTOR
 from ..precision import parse_precision
@@ -357,14 +357,14 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     for first in range(0, len(batches), REDUCE_GROUP):  # a group at a time: memory stays near the output's
         group = batches[first:first + REDUCE_GROUP]
         cols_group = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
-        samples = np.empty((len(grid), len(lanes.states), len(cols_group)))
+        samples = np.empty((len(lanes.states), len(cols_group), len(grid)))  # (states, lanes, grid)
         final_pars = np.empty((lane_pars.shape[0], len(cols_group)))
         failed = {}  # lane -> (outcome, time)
         for b in group:
             cols = np.arange(b.columns.start, min(b.columns.stop, n))
             at = cols - cols_group[0]
             if not messages and _batch_ok(b, len(grid)):
-                samples[:, :, at] = b.output[:, :, : len(cols)]
+                samples[:, at[0]:at[-1] + 1, :] = np.transpose(b.output[:, :, : len(cols)], (1, 2, 0))
                 final_pars[:, at] = b.local.pars[:, : len(cols)]
                 continue
             for k, j in zip(cols, at):  # again, each lane alone (module docstring)
@@ -373,12 +373,13 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
                 if failure is not None:
                     failed[j] = failure
                     continue
-                samples[:, :, j] = one.output[:, :, 0] if one.output.shape[0] == len(grid) else np.nan
+                samples[:, j, :] = one.output[:, :, 0].T if one.output.shape[0] == len(grid) else np.nan
                 final_pars[:, j] = one.local.pars[:, 0]
         for i in range(first, first + len(group)):
             batches[i] = None  # its output is copied: let it go
         good = np.array([j not in failed for j in range(len(cols_group))])
-        reduced = iter(_reduce(spec, ens, idx[cols_group[good]], grid, samples[:, :, good], final_pars[:, good],
+        kept_samples = samples if good.all() else np.ascontiguousarray(samples[:, good])
+        reduced = iter(_reduce(spec, ens, idx[cols_group[good]], grid, kept_samples, final_pars[:, good],
                                model_pars[:, cols_group[good]], refs[cols_group[good]], senses))
         rows += [_failed_row(spec, indices[cols_group[j]], *failed[j]) if j in failed else next(reduced)
                  for j in range(len(cols_group))]
@@ -399,7 +400,7 @@ def _failed_row(spec: SweepSpec, index: int, outcome: str, t_stop: float) -> dic
 
 
 def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, model_pars, refs, senses) -> list:
-    """The rows of lanes that ran to their end, from their samples (grid, states, lanes) at once; a lane
+    """The rows of lanes that ran to their end, from their samples (states, lanes, grid) at once; a lane
     that breaks a guard (:meth:`verify.engine.ensemble.Ensemble.guard`) gets a failed row; ``senses``
     reads each run's samples when the spec records a sense (:func:`run_chunk`)."""
     reason = ens.record(final_pars, "reason").astype(int)
@@ -412,41 +413,40 @@ def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, 
     for k, failure in enumerate(guarded):
         if failure is not None:
             rows[k] = _failed_row(spec, int(indices[k]), *failure)
-    lanes = np.array([k for k in range(len(indices)) if rows[k] is None], dtype=np.int64)
-    if not len(lanes):
+    if all(r is not None for r in rows):
         return rows
-    lengths = kept[lanes]
-    starts = np.cumsum(lengths) - lengths
-    ends = starts + lengths - 1
-    y = segments_of(samples[:, :, lanes], lengths)
-    diag = batch.per_run(ens.energy_terms, np.ascontiguousarray(y[:, :8].T),
-                         np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
-    omega_z, terms = diag[0], diag[1:]
-    energy, scale = terms.sum(axis=0), np.abs(terms).sum(axis=0)
-    work = y[:, ens.lanes.row("W")] if "W" in ens.lanes.states else 0.0
-    drift = (np.maximum.reduceat(np.abs(energy + work - np.repeat(energy[starts], lengths)), starts)
-             / np.maximum.reduceat(scale, starts))
-    th = y[:, TH]
-    q = {"max_theta": np.maximum.reduceat(th, starts), "min_theta": np.minimum.reduceat(th, starts),
-         "final_theta": th[ends],
-         "max_theta_deviation": np.maximum.reduceat(np.abs(th - np.repeat(refs[lanes], lengths)), starts)}
-    for i, name in enumerate(STATE_NAMES):
-        q[f"final_{name}"] = y[ends, i]
-    if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself is
-        # between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
-        need = batch.per_run(ens.friction_required, np.ascontiguousarray(y[:, :8].T),
-                             np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
-        need = np.where(need[0] > 0, need[1], np.nan)
-        q["max_friction_required_on_grid"] = np.fmax.reduceat(need, starts)
+    # every lane is reduced at once (a failed lane's values are not read); a run is its first kept samples
+    lane = np.arange(len(indices))
+    last = kept - 1
+    run = np.arange(len(grid))[None, :] < kept[:, None]  # (lanes, grid)
+    with np.errstate(invalid="ignore"):
+        diag = batch.per_lane(ens.energy_terms, samples[:8], model_pars, kept)
+        omega_z, terms = diag[0], diag[1:]
+        energy, scale = terms.sum(axis=0), np.abs(terms).sum(axis=0)
+        work = samples[ens.lanes.row("W")] if "W" in ens.lanes.states else 0.0
+        drift = (np.where(run, np.abs(energy + work - energy[:, :1]), -np.inf).max(axis=1)
+                 / np.where(run, scale, -np.inf).max(axis=1))
+        th = samples[TH]
+        q = {"max_theta": np.where(run, th, -np.inf).max(axis=1), "min_theta": np.where(run, th, np.inf).min(axis=1),
+             "final_theta": th[lane, last],
+             "max_theta_deviation": np.where(run, np.abs(th - refs[:, None]), -np.inf).max(axis=1)}
+        for i, name in enumerate(STATE_NAMES):
+            q[f"final_{name}"] = samples[i, lane, last]
+        if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself
+            # is between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
+            need = batch.per_lane(ens.friction_required, samples[:8], model_pars, kept)
+            need = np.where(run & (need[0] > 0), need[1], np.nan)
+            q["max_friction_required_on_grid"] = np.fmax.reduce(need, axis=1)
     wanted = set(spec.record) & set(SENSE_KEYS)  # only where asked: the windows cost a filter each
-    for j, k in enumerate(lanes):
+    points = spec.columns(np.asarray(indices, dtype=np.int64))
+    for k in np.flatnonzero([r is None for r in rows]):
         index = int(indices[k])
-        point = spec.point(index)
+        point = {name: float(column[k]) for name, column in points.items()}
         stop = float(t_stop[k]) if stopped[k] else spec.t_end
         row = {"idx": index, **{f"in_{a}": v for a, v in point.items()},
                "outcome": "ok" if not stopped[k] else ens.event_name(reason[k]), "t_stop": stop,
-               "energy_drift_vs_terms": float(drift[j])}
-        values = {name: column[j] for name, column in q.items()}
+               "energy_drift_vs_terms": float(drift[k])}
+        values = {name: column[k] for name, column in q.items()}
         if friction is not None:
             slipped = row["outcome"] == "slips"
             values.update(slipped=float(slipped), t_slip=stop if slipped else math.nan,
@@ -454,8 +454,7 @@ def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, 
         if "tilt" in point:
             values["growth"] = values["max_theta_deviation"] / point["tilt"]
         if wanted:
-            seg = slice(starts[j], ends[j] + 1)
-            values.update(senses(grid[: lengths[j]], y[seg], omega_z[seg]))
+            values.update(senses(grid[: kept[k]], samples[:, k, : kept[k]].T, omega_z[k, : kept[k]]))
         for name in spec.record:
             row[name] = float(values[name])
         rows[k] = row
