@@ -114,6 +114,7 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     write_benchmarks(results, tmp_path)
     data = json.loads((tmp_path / "benchmarks.json").read_text())
     assert [c.get("error") for c in data["ensembles_vs_bare"]] == [None] * 3  # every workload ran
+    assert data["call_paths"]["same_bytes"]  # every path integrates the same bits
     assert [c["precision"] for c in data["solve_vs_bare"]] == ["double", "double", "quad"]
     assert data["energy"]["starts"] == len(data["energy"]["exponent_per_start"]["suite"])
     methods = {a["method"] for a in data["work_precision"]["attempts"]}
@@ -130,8 +131,8 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     assert md.startswith("# Benchmarks")
     assert [ln for ln in md.splitlines() if ln.startswith("## ")] == [
         "## Targets", "## solve against bare heyoka", "## The sweep engine and the stability map against a bare ensemble",
-        "## Long-run energy error", "## heyoka's own modes on the benchmark grid", "## Work against precision",
-        "## Compile cost", "## Body files"]
+        "## Call paths", "## Long-run energy error", "## heyoka's own modes on the benchmark grid", "## Work against precision",
+        "## Compile cost", "## Body files", "## The command line"]
     # the layout does not depend on the numbers
     assert _skeleton(render_markdown(_scaled(data, 1.37))) == _skeleton(md)
     assert (tmp_path / "figures" / "bench-work-precision.png").read_bytes()[:4] == b"\x89PNG"
@@ -193,15 +194,18 @@ def test_the_report_names_the_latest_benchmark_run_and_does_not_run_one():
 def test_ensemble_rows_name_the_same_guard_yardstick_and_each_guards_cost():
     """The batch rows compare with the bare ensemble that has the suite's events and step cap (target), show
     the ratio to the plain bare ensemble beside it, and list what each guard costs."""
-    times = {"suite": [1.0, 1.1], "bare, same events and step cap": [0.95, 1.0], "bare, no events, no step cap": [0.7, 0.72]}
+    times = {"suite": [1.0, 1.1], "bare, same events and step cap": [0.95, 1.0], "bare, no events, no step cap": [0.7, 0.72],
+             "bare, same events and step cap, output grid": [1.25, 1.3]}
     case = {"workload": "w", "trajectories": 100, "samples": 11, "batch_size": 4, "threads": 2, "step_cap": 0.03,
             "bare_lanes_stopped": {"bare, same events and step cap": 0}, "outcomes": {"ok": 100},
             "ratio": ratio_record(times, "suite", "bare, same events and step cap", TARGETS["ensemble_throughput"],
                                   inverse=True),
             "ratio_no_guards": ratio_record(times, "suite", "bare, no events, no step cap", inverse=True),
+            "ratio_same_output": ratio_record(times, "suite", "bare, same events and step cap, output grid",
+                                              inverse=True),
             "guards": [{"variant": "bare + step cap only", "throughput_vs_plain": 0.8}]}
     assert TARGETS["ensemble_throughput"] == (">=", 0.9)
     text = "\n".join(_md_ensembles({"ensembles_vs_bare": [case]}))
     (row,) = [ln for ln in text.splitlines() if ln.startswith("| w | 100")]
-    assert ">= 0.9: met" in row and "| 0.7 |" in row  # 0.95/1.0 met; 0.7/1.0 beside it
+    assert ">= 0.9: met" in row and "| 0.7 | 1.25 |" in row  # 0.95/1.0 met; 0.7/1.0 and 1.25/1.0 beside it
     assert "| w | bare + step cap only | 0.8 |" in text

@@ -163,6 +163,8 @@ def bare_lanes(ens, form_kwargs: dict, states, values: dict, end, threads: int, 
 
 #: The suite's route and its yardstick in every workload's record.
 SUITE, SAME, PLAIN = "suite", "bare, same events and step cap", "bare, no events, no step cap"
+#: The yardstick with the suite's dense output on its grid too (heyoka's ``ensemble_propagate_grid_batch``).
+SAME_OUTPUT = "bare, same events and step cap, output grid"
 
 
 def guard_variants(ens, form_kwargs, states, values, t_end, grid, threads, cap) -> dict:
@@ -176,7 +178,7 @@ def guard_variants(ens, form_kwargs, states, values, t_end, grid, threads, cap) 
     for name in dict.fromkeys(ens.lanes.events):  # the domain's two ends share a name: one guard
         variants[f"bare + event {name} only"] = bare_lanes(ens, form_kwargs, states, values, t_end, threads, None,
                                                           events=(name,))
-    variants["bare, same events and step cap, output grid"] = bare_lanes(ens, form_kwargs, states, values, grid,
+    variants[SAME_OUTPUT] = bare_lanes(ens, form_kwargs, states, values, grid,
                                                                         threads, cap)
     return variants
 
@@ -202,6 +204,7 @@ def ensemble_against_bare(quick: bool, progress, repeats: int = None) -> list:
                "bare_lanes_stopped": {k: v for k, v in last.items() if k != SUITE},
                "ratio": ratio_record(times, SUITE, SAME, TARGETS["ensemble_throughput"], inverse=True),
                "ratio_no_guards": ratio_record(times, SUITE, PLAIN, inverse=True),
+               "ratio_same_output": ratio_record(times, SUITE, SAME_OUTPUT, inverse=True),
                "guards": guard_costs({k: v for k, v in times.items() if k != SUITE})}
         out.append(rec)
 

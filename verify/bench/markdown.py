@@ -28,7 +28,7 @@ def render_markdown(r: dict) -> str:
         + (" (quick sizes)." if r["quick"] else "."),
         "",
     ]
-    lines += _md_targets(r) + _md_solve(r) + _md_ensembles(r) + _md_energy(r) + _md_modes(r) + _md_work_precision(r)
+    lines += _md_targets(r) + _md_solve(r) + _md_ensembles(r) + _md_call_paths(r) + _md_energy(r) + _md_modes(r) + _md_work_precision(r)
     lines += _md_compile(r) + _md_bodies(r) + _md_commands(r)
     return "\n".join(lines)
 
@@ -118,16 +118,19 @@ def _md_ensembles(r: dict) -> list:
              "the target is >= 0.9 of its throughput; beside it, the ratio to a plain ensemble without them.  Ratio =",
              "bare seconds / suite seconds (trajectories per second relative to bare), minima over the rounds.", "",
              "| workload | trajectories | samples a run | suite (traj/s) | bare, same guards (traj/s) | ratio | "
-             "per-round ratio: median (range) | target | ratio to bare without guards | notes |",
-             "|---|---:|---:|---:|---:|---:|---|---|---:|---|"]
+             "per-round ratio: median (range) | target | ratio to bare without guards | ratio to bare with the same "
+             "guards and output grid | notes |",
+             "|---|---:|---:|---:|---:|---:|---|---|---:|---:|---|"]
     costs = []
     for case in r["ensembles_vs_bare"]:
         if "error" in case:
-            lines.append(f"| {case['workload']} | - | - | failed: {case['error']} | - | - | - | - | - | - |")
+            lines.append(f"| {case['workload']} | - | - | failed: {case['error']} | - | - | - | - | - | - | - |")
             continue
         rec = case["ratio"]
         lo, hi = rec["round_ratio_range"]
         plain = case.get("ratio_no_guards")
+        same_output = case.get("ratio_same_output")
+        same_output = f"{same_output['ratio']:.3g}" if same_output else "-"
         stopped = case["bare_lanes_stopped"]
         stopped = sum(stopped.values()) if isinstance(stopped, dict) else stopped
         notes = [f"{rec['rounds']} rounds", f"batch {case['batch_size']}, {case['threads']} threads",
@@ -141,11 +144,11 @@ def _md_ensembles(r: dict) -> list:
         lines.append(f"| {case['workload']} | {case['trajectories']:,} | {case['samples']} | "
                      f"{case['trajectories'] / rec['seconds']:,.0f} | {case['trajectories'] / rec['baseline_seconds']:,.0f} | "
                      f"{rec['ratio']:.3g} | {rec['median_round_ratio']:.3g} ({lo:.3g} - {hi:.3g}) | {_verdict(rec)} | "
-                     f"{plain['ratio']:.3g} | {'; '.join(notes)} |" if plain else
+                     f"{plain['ratio']:.3g} | {same_output} | {'; '.join(notes)} |" if plain else
                      f"| {case['workload']} | {case['trajectories']:,} | {case['samples']} | "
                      f"{case['trajectories'] / rec['seconds']:,.0f} | {case['trajectories'] / rec['baseline_seconds']:,.0f} | "
                      f"{rec['ratio']:.3g} | {rec['median_round_ratio']:.3g} ({lo:.3g} - {hi:.3g}) | {_verdict(rec)} | - | "
-                     f"{'; '.join(notes)} |")
+                     f"{same_output} | {'; '.join(notes)} |")
         for g in case.get("guards", []):
             costs.append(f"| {case['workload']} | {g['variant']} | {g['throughput_vs_plain']:.3g} |")
     if costs:
@@ -154,6 +157,25 @@ def _md_ensembles(r: dict) -> list:
                   "step cap is one radian of the fastest rate or of sqrt(g) (the single road's); the events are the",
                   "model's (the domain's two ends share a name); the output grid is the suite's dense output.", "",
                   "| workload | bare with | throughput / plain bare's |", "|---|---|---:|", *costs]
+    return lines + [""]
+
+
+def _md_call_paths(r: dict) -> list:
+    c = r.get("call_paths")
+    if not c:
+        return []
+    lines = ["## Call paths", "",
+             f"One batch integrator (the disk's bare lanes, batch {c['batch_size']}), one thread, the {c['batches']} "
+             f"batches of the benchmark grid, 10 s on {c['samples']} output points, entered along each way Python can "
+             "reach heyoka's `propagate_grid` (`verify.engine.call_paths`): keywords written out or a mapping, "
+             "directly or one C frame deeper.  Same work: the outputs and steps are "
+             f"{'the same bytes along every path' if c['same_bytes'] else 'NOT the same bytes (a defect)'} "
+             f"({c['steps']:,} batch steps).  Minimum over {c['rounds']} interleaved rounds.  A difference here is "
+             "the machine's (where the JIT code's stack sits), not the work's; the batch propagator times the "
+             "paths on each worker's first batches and keeps the fastest.", "",
+             "| path | seconds | us per batch step | / fastest |", "|---|---:|---:|---:|"]
+    lines += [f"| {p['path']} | {p['seconds']:.4g} | {p['us_per_step']:.4g} | {p['vs_fastest']:.3g} |"
+              for p in c["paths"]]
     return lines + [""]
 
 

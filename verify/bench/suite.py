@@ -13,6 +13,7 @@ import heyoka as hy
 from ..provenance import cpu_model, source_commit, write_atomic
 from .commands import command_speed
 from .bodies import body_cost
+from .call_paths import call_path_cost
 from .compile_cost import compile_cost
 from .energy import energy_growth
 from .ensembles import ensemble_against_bare
@@ -47,6 +48,7 @@ def run_benchmarks(quick: bool = False, progress=None) -> dict:
                                 + solve_against_bare("disk", (_size("quad_t_end", quick),), "quad",
                                                      _size("quad_rounds", quick), invariants=False, progress=say))
     results["ensembles_vs_bare"] = ensemble_against_bare(quick, say)
+    results["call_paths"] = call_path_cost(quick, say)
     results["energy"] = energy_growth(quick, say)
     results["sweep"] = sweep_throughput(quick, say)
     wp = work_precision(quick, say)
