@@ -23,10 +23,7 @@ CLEAN = ["verify/engine/hybrid.py", "verify/engine/hybrid_guards.py", "verify/en
 
 #: Files the whole-tree check leaves out, with why.  An entry goes when its reason does (the test below fails
 #: once an excepted file has no finding left, so that its exception is removed then).
-EXCEPTIONS = {
-    "verify/bench/solve_vs_bare.py": "changed on the compact-equations branch; the lead removes this exception "
-                                     "when it merges",
-}
+EXCEPTIONS: dict = {}
 
 
 def _lazy(source: str) -> list:

@@ -7,6 +7,8 @@ import numpy as np
 from models import get_model
 
 from ..engine.compile import compile_model
+from ..engine.single import solve
+from ..standard import STANDARD_STATES
 from .sizes import TARGETS, _g
 from .timing import interleaved, ratio_record
 
@@ -43,9 +45,6 @@ def solve_against_bare(model_name: str = "disk", t_ends=("1", "10", "100"), prec
     runs (solve's cap of one radian of the fastest rate does not bind on the standard states:
     compare the steps).  The start and parameters are read back from a first ``solve`` run.
     """
-    from .. import solve
-    from ..standard import STANDARD_STATES
-
     state = STANDARD_STATES[model_name]
     first = solve(model_name, t_ends[0], state, precision=precision)  # JIT and sympy caches warm
     prec, model = first.precision, get_model(model_name)
