@@ -37,6 +37,7 @@ from __future__ import annotations
 import copy
 import threading
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import ExitStack
 from dataclasses import dataclass
 from types import SimpleNamespace
 from typing import Iterator, Optional
@@ -186,7 +187,8 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
     GIL (~1 ms for an integrator with Python event callbacks), which serialises the threads; a
     queue keeps both threads busy when batches cost unequal times (fixed shares left one idle).
     Each thread calls heyoka along the path it found fastest (:mod:`.call_paths`).  A batch's
-    result depends on its own lanes only, so neither the sharing nor the path changes a bit.
+    result depends on its own lanes only, so neither the sharing nor the path changes a bit.  The
+    next chunk is started before a chunk is yielded: it runs while the caller reduces this one.
     """
     bs = template.batch_size
     n_batches = states.shape[1] // bs
@@ -217,12 +219,27 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
                 return out
             out.append(one(copies[worker], choosers[worker], b))
 
+    def launch(pool, first: int, stack: ExitStack):
+        """Start the chunk from batch ``first`` on every worker; heyoka's messages collected until it ends."""
+        messages = stack.enter_context(heyoka_log.collect())
+        queue, lock = iter(range(first, min(first + chunk, n_batches))), threading.Lock()
+        return [pool.submit(share, worker, queue, lock) for worker in range(workers)], messages
+
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        for first in range(0, n_batches, chunk):
-            queue, lock = iter(range(first, min(first + chunk, n_batches))), threading.Lock()
-            with heyoka_log.collect() as messages:
-                parts = list(pool.map(share, range(workers), [queue] * workers, [lock] * workers))
-            yield sorted((b for part in parts for b in part), key=lambda b: b.index), list(messages)
+        firsts = list(range(0, n_batches, chunk))
+        stack = ExitStack()
+        try:
+            running = launch(pool, firsts[0], stack) if firsts else None
+            for k in range(len(firsts)):
+                futures, messages = running
+                parts = [f.result() for f in futures]
+                stack.close()  # this chunk's messages are complete
+                stack = ExitStack()
+                # the next chunk runs while the caller reduces this one
+                running = launch(pool, firsts[k + 1], stack) if k + 1 < len(firsts) else None
+                yield sorted((b for part in parts for b in part), key=lambda b: b.index), list(messages)
+        finally:
+            stack.close()
 
 
 def alone(template, grid, state_col, pars_col, max_delta_t=None, max_steps=None) -> tuple:

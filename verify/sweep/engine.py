@@ -61,10 +61,12 @@ quantities (white on a map, never data), as in ``solve``:
 * ``failed:step_size_collapse`` -- the run needed more than COLLAPSE_FACTOR (t_end x the fastest
   initial rate) steps, i.e. its steps averaged below 2^-15 of the step cap, as in ``solve``.
 
-A batch in which any of these happens (or any heyoka warning in the chunk, which names a lane but
-not its batch) is integrated again lane by lane, each lane alone in a batch of copies of itself:
-lanes are independent, so a good lane gets the same bits it got in the mixed batch, and a failed
-lane is told apart from its neighbours.
+A batch in which any of these happens (or any heyoka warning in its group of :data:`REDUCE_GROUP`
+batches, which names a lane but not its batch) is integrated again lane by lane, each lane alone in a
+batch of copies of itself: lanes are independent, so a good lane gets the same bits it got in the mixed
+batch, and a failed lane is told apart from its neighbours.  A chunk's groups are integrated one after
+the other, each while the one before is reduced; before any lane is run again alone the remaining
+groups are finished first, so that the messages heyoka writes during it are its own.
 """
 from __future__ import annotations
 
@@ -86,8 +88,9 @@ from ..precision import parse_precision
 from .spec import FRICTION as FRICTION_AXIS
 from .spec import RATE_AXIS, SENSE_KEYS, InvalidPoint, SpecError, SweepSpec
 
-#: Batches reduced together: enough lanes for numpy to pay, few enough that a chunk's samples are
-#: held about once (the store's memory estimate assumes 1.5 times the dense output).
+#: Batches integrated and reduced together, one group reduced while the next integrates: enough lanes
+#: for numpy to pay, few enough that a chunk's samples are held about once (the store's memory estimate
+#: assumes 1.5 times the dense output).
 REDUCE_GROUP = 16
 TH = STATE_NAMES.index("theta")  # theta's row of a chunk's states and column of a run's samples
 
@@ -352,38 +355,58 @@ def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = N
     grid = np.linspace(0.0, spec.t_end, spec.samples)
     options = {"max_delta_t": 1.0 / fastest_rate(spec, ens), "max_steps": step_budget(spec, ens)}
 
-    (batches, messages), = ens.propagate(lane_states, lane_pars, grid, threads, **options)
+    run = _GroupRun(spec, ens, idx, indices, grid, lane_states, lane_pars, model_pars, refs, options, senses)
     rows = []
-    for first in range(0, len(batches), REDUCE_GROUP):  # a group at a time: memory stays near the output's
-        group = batches[first:first + REDUCE_GROUP]
+    groups = ens.propagate(lane_states, lane_pars, grid, threads, REDUCE_GROUP, **options)
+    for batches, messages in groups:  # a group at a time, the next one integrating meanwhile
+        if messages or not all(_batch_ok(b, len(grid)) for b in batches):
+            # some lane is run again alone (module docstring): only once nothing else runs, so that
+            # heyoka's messages during it are its own
+            for later, later_messages in [(batches, messages)] + list(groups):
+                rows += run.rows(later, later_messages)
+            break
+        rows += run.rows(batches, messages)
+    return rows
+
+
+class _GroupRun:
+    """The rows of one group of a chunk's batches: samples gathered (failed lanes run again alone), reduced."""
+
+    def __init__(self, spec, ens, idx, indices, grid, lane_states, lane_pars, model_pars, refs, options, senses):
+        self.spec, self.ens, self.idx, self.indices, self.grid = spec, ens, idx, indices, grid
+        self.lane_states, self.lane_pars, self.model_pars, self.refs = lane_states, lane_pars, model_pars, refs
+        self.options, self.senses, self.n = options, senses, len(indices)
+
+    def rows(self, group, messages) -> list:
+        ens, grid, n = self.ens, self.grid, self.n
         cols_group = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
-        samples = np.empty((len(lanes.states), len(cols_group), len(grid)))  # (states, lanes, grid)
-        final_pars = np.empty((lane_pars.shape[0], len(cols_group)))
+        samples = np.empty((len(ens.lanes.states), len(cols_group), len(grid)))  # (states, lanes, grid)
+        final_pars = np.empty((self.lane_pars.shape[0], len(cols_group)))
         failed = {}  # lane -> (outcome, time)
         for b in group:
             cols = np.arange(b.columns.start, min(b.columns.stop, n))
+            if not len(cols):
+                continue  # padding only
             at = cols - cols_group[0]
             if not messages and _batch_ok(b, len(grid)):
                 samples[:, at[0]:at[-1] + 1, :] = np.transpose(b.output[:, :, : len(cols)], (1, 2, 0))
                 final_pars[:, at] = b.local.pars[:, : len(cols)]
                 continue
             for k, j in zip(cols, at):  # again, each lane alone (module docstring)
-                one, warned = ens.alone(grid, lane_states[:, k], lane_pars[:, k], **options)
+                one, warned = ens.alone(grid, self.lane_states[:, k], self.lane_pars[:, k], **self.options)
                 failure = ens.failure(one, 0, warned)
                 if failure is not None:
                     failed[j] = failure
                     continue
                 samples[:, j, :] = one.output[:, :, 0].T if one.output.shape[0] == len(grid) else np.nan
                 final_pars[:, j] = one.local.pars[:, 0]
-        for i in range(first, first + len(group)):
-            batches[i] = None  # its output is copied: let it go
         good = np.array([j not in failed for j in range(len(cols_group))])
-        kept_samples = samples if good.all() else np.ascontiguousarray(samples[:, good])
-        reduced = iter(_reduce(spec, ens, idx[cols_group[good]], grid, kept_samples, final_pars[:, good],
-                               model_pars[:, cols_group[good]], refs[cols_group[good]], senses))
-        rows += [_failed_row(spec, indices[cols_group[j]], *failed[j]) if j in failed else next(reduced)
-                 for j in range(len(cols_group))]
-    return rows
+        kept = samples if good.all() else np.ascontiguousarray(samples[:, good])
+        chosen = cols_group[good]
+        reduced = iter(_reduce(self.spec, ens, self.idx[chosen], grid, kept, final_pars[:, good],
+                               self.model_pars[:, chosen], self.refs[chosen], self.senses))
+        return [_failed_row(self.spec, self.indices[cols_group[j]], *failed[j]) if j in failed else next(reduced)
+                for j in range(len(cols_group))]
 
 
 def _batch_ok(b: batch.Batch, n_grid: int) -> bool:
