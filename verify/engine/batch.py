@@ -227,7 +227,7 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
 
     with ThreadPoolExecutor(max_workers=workers) as pool:
         firsts = list(range(0, n_batches, chunk))
-        stack = ExitStack()
+        stack, running = ExitStack(), None
         try:
             running = launch(pool, firsts[0], stack) if firsts else None
             for k in range(len(firsts)):
@@ -238,7 +238,9 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
                 # the next chunk runs while the caller reduces this one
                 running = launch(pool, firsts[k + 1], stack) if k + 1 < len(firsts) else None
                 yield sorted((b for part in parts for b in part), key=lambda b: b.index), list(messages)
-        finally:
+        finally:  # a caller that stops early: the chunk under way ends inside its collection
+            for future in (running[0] if running else ()):
+                future.exception()
             stack.close()
 
 
