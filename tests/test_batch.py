@@ -6,6 +6,7 @@ import math
 
 import heyoka as hy
 import numpy as np
+import pytest
 
 from verify.engine import batch
 
@@ -99,6 +100,32 @@ def test_per_lane_evaluation_has_the_bits_of_one_call_per_run():
     moved = points.copy()
     moved[0, 8, 5] = np.nextafter(moved[0, 8, 5], np.inf)
     assert batch.per_lane(fn, moved, pars, lengths)[:, 8, :401].tobytes() != got[:, 8, :401].tobytes()
+
+
+def test_a_lane_of_nan_or_huge_values_changes_no_other_lanes_bits():
+    """heyoka's vector sine and cosine reduce a whole SIMD group's arguments another way when one of them is
+    NaN, infinite or huge; per_lane keeps each lane in groups of its own, so a failed lane's samples (NaN)
+    or a lane far out (1e16) leave every other lane with the bits of a call on it alone.  Negative control:
+    the same samples flattened across lanes into one call do change some of them."""
+    fn = batch.ScalarTwin.of([hy.sin(X) * V + hy.cos(X)], [X, V])
+    width = int(fn.simd.batch_size)
+    if width == 1:
+        pytest.skip("scalar compiled functions: no SIMD groups to share")
+    rng = np.random.default_rng(5)
+    n_lanes, n = 400, 101  # 101 samples: not whole groups at width 4 or 8
+    points = rng.uniform(-3.0, 3.0, (2, n_lanes, n))
+    points[0, ::2, 60:] = np.nan
+    points[0, 1::4, 90:] = 1e16
+    lengths = np.full(n_lanes, n)
+    lengths[::2] = 60
+    lengths[1::4] = 90
+    got = batch.per_lane(fn, points, None, lengths)
+    for lane in range(1, n_lanes, 2):
+        m = lengths[lane]
+        assert got[:, lane, :m].tobytes() == fn.simd(np.ascontiguousarray(points[:, lane, :m])).tobytes()
+    flat = fn.simd(np.ascontiguousarray(points.reshape(2, -1))).reshape(1, n_lanes, n)
+    assert any(flat[:, lane, :lengths[lane] // width * width].tobytes()
+               != got[:, lane, :lengths[lane] // width * width].tobytes() for lane in range(3, n_lanes, 4))
 
 
 def test_step_cap_is_one_radian_of_the_fastest_rate():

@@ -196,7 +196,8 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
     grid_lanes = np.ascontiguousarray(np.repeat(np.asarray(grid, float)[:, None], bs, axis=1))
     workers = max(1, int(threads))
     copies = [copy.deepcopy(template) for _ in range(workers)]
-    choosers = [call_paths.PathChooser() for _ in range(workers)]
+    choosers: dict = {}  # per thread: which path is fast depends on the thread's stack (:mod:`.call_paths`)
+    failed = threading.Event()  # a worker that raised: the others stop taking batches
 
     def one(ta, chooser, b: int) -> Batch:
         cols = slice(b * bs, (b + 1) * bs)
@@ -212,12 +213,18 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
 
     def share(worker: int, queue, lock) -> list:
         out = []
-        while True:
+        chooser = choosers.setdefault(threading.get_ident(), call_paths.PathChooser())
+        while not failed.is_set():
             with lock:
                 b = next(queue, None)
             if b is None:
                 return out
-            out.append(one(copies[worker], choosers[worker], b))
+            try:
+                out.append(one(copies[worker], chooser, b))
+            except BaseException:
+                failed.set()
+                raise
+        return out
 
     def launch(pool, first: int, stack: ExitStack):
         """Start the chunk from batch ``first`` on every worker; heyoka's messages collected until it ends."""
@@ -296,35 +303,35 @@ def per_lane(fn: ScalarTwin, points: np.ndarray, pars: Optional[np.ndarray], len
     ``points`` (n_inputs, lanes, n_samples) holds lane l's samples in order, its run the first
     ``lengths[l]``; ``pars`` (n_pars, lanes) its parameters (or None).  heyoka's compiled
     functions evaluate whole SIMD groups of points vectorised and the points left over one by one
-    with scalar code, whose transcendental functions can differ in the last bit, and a SIMD lane's
-    value does not depend on its neighbours.  So every point is evaluated by the SIMD build in one
-    call (padded to whole groups) and each run's leftover points -- its last ``length % width``,
-    which a call per run gives to scalar code -- again by the scalar build.
+    with scalar code, whose transcendental functions can differ in the last bit; and a SIMD group's
+    values can depend on the whole group (the vector sine and cosine reduce their arguments another
+    way when one of the group is NaN, infinite or beyond ~1e15).  So each lane's samples are padded
+    to whole groups (its last sample repeated), no group holds two lanes, and every point is evaluated
+    by the SIMD build in one call: a run's whole groups are then the groups of a call on that run
+    alone, and its leftover points -- its last ``length % width``, which such a call gives to scalar
+    code -- are evaluated again by the scalar build.
 
     Returns (n_outputs, lanes, n_samples); the values past a run's length belong to no run.
     """
     n_in, lanes, n_samples = points.shape
     lengths = np.asarray(lengths, dtype=np.int64)
     width = int(fn.simd.batch_size)
-    total = lanes * n_samples
-    padded = total + (-total) % width
-    if padded == total and points.flags.c_contiguous:
-        flat = points.reshape(n_in, total)  # no copy: whole groups already (lanes a multiple of the width)
+    row = n_samples + (-n_samples) % width  # a lane's samples in whole groups
+    if row == n_samples and points.flags.c_contiguous:
+        flat = points.reshape(n_in, lanes * row)  # no copy
     else:
-        flat = np.empty((n_in, padded))
-        flat[:, :total] = points.reshape(n_in, total)
-        flat[:, total:] = flat[:, total - 1:total]
+        lanes_padded = np.empty((n_in, lanes, row))
+        lanes_padded[:, :, :n_samples] = points
+        lanes_padded[:, :, n_samples:] = points[:, :, n_samples - 1:]
+        flat = lanes_padded.reshape(n_in, lanes * row)
     kwargs = {}
     if pars is not None and fn.simd.nparams:
-        per_point = np.empty((fn.simd.nparams, padded))
-        per_point[:, :total] = np.repeat(pars[: fn.simd.nparams], n_samples, axis=1)
-        per_point[:, total:] = per_point[:, total - 1:total]
-        kwargs = {"pars": per_point}
+        kwargs = {"pars": np.repeat(np.ascontiguousarray(pars[: fn.simd.nparams], dtype=float), row, axis=1)}
     out = fn.simd(flat, **kwargs)
     tails = lengths % width
-    tail = np.repeat(np.arange(lanes) * n_samples + lengths - tails, tails) + (
+    tail = np.repeat(np.arange(lanes) * row + lengths - tails, tails) + (
         np.arange(int(tails.sum())) - np.repeat(np.cumsum(tails) - tails, tails))
     if tail.size:
         scalar = {"pars": np.ascontiguousarray(kwargs["pars"][: fn.scalar.nparams, tail])} if kwargs else {}
         out[:, tail] = fn.scalar(np.ascontiguousarray(flat[:, tail]), **scalar)
-    return out[:, :total].reshape(out.shape[0], lanes, n_samples)
+    return out.reshape(out.shape[0], lanes, row)[:, :, :n_samples]

@@ -203,7 +203,8 @@ class Ensemble:
                 ok &= th > theta_stop
         finite_lanes = finite.all(axis=1)
         if self.normal_force is not None and finite_lanes.any():
-            # every lane is evaluated (a lane with a non-finite sample is judged above, its values unread)
+            # every lane is evaluated (a lane with a non-finite sample is judged above and its values are not
+            # read; per_lane keeps each lane in its own SIMD groups, so it changes no other lane's bits)
             with np.errstate(invalid="ignore"):
                 ok &= batch.per_lane(self.normal_force, samples[:8], model_pars, checked)[0] > 0
                 if friction is not None:

@@ -88,7 +88,7 @@ def _initial_conditions(model, motion, rates, tilts, params, cap):
             for j, th0 in enumerate(th0s):
                 k = i * len(rates) + j
                 lo, hi = ends[j]
-                start = float(th0 + dt)  # pi/2 + tilt rounded once
+                start = float(th0 + dt)  # the steady angle (40 digits) plus the tilt, rounded once
                 if not lo < start < hi:
                     raise ValueError(f"tilt {float(tilt)!r} at rate {float(rates[j])!r} starts theta at {start!r}, "
                                      f"outside ({lo!r}, {hi!r}); allowed: tilts below the cap {cap} that keep "
