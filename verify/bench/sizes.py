@@ -13,6 +13,7 @@ TARGETS = {
     "solve": ("<=", 1.25),  # solve / bare propagate_until with the events solve compiles, double
     "solve_invariants": ("<=", 1.5),  # the same with every invariant read on the default grid
     "solve_quad": ("<=", 1.1),  # solve / bare + events in quad
+    "solve_per_step": ("<=", 1.1),  # solve's seconds per step / bare + events + heyoka's angle reduction's
     "ensemble_throughput": (">=", 0.9),  # suite trajectories per second / bare ensemble's with the same events and cap
     "energy_exponent": ("<=", 0.55),  # fitted t^a of the relative energy error
     "dop853_speedup": (">=", 200.0),  # DOP853 time / heyoka double time at the same accuracy
