@@ -177,10 +177,18 @@ class Ensemble:
 
     # --- the guards on the samples ------------------------------------------------------------------
 
+    def sample_row(self, n_grid: int) -> int:
+        """A lane's row of samples in whole SIMD groups of the compiled functions: ``n_grid`` rounded up.
+
+        Samples laid out (states, lanes, :meth:`sample_row`), the padding after each lane's last sample,
+        reach :func:`verify.engine.batch.per_lane` without a copy."""
+        width = int(self.energy_terms.simd.batch_size)
+        return n_grid + (-n_grid) % width
+
     def guard(self, grid, samples, model_pars, stopped, t_stop, theta_stop=None, friction=None) -> list:
         """Per lane, (outcome, time) of the first sample that should not exist, or None.
 
-        ``samples`` (states, lanes, grid) of the full form.  Every sample before the lane's stop must
+        ``samples`` (states, lanes, grid or more: :meth:`sample_row`) of the full form.  Every sample before the lane's stop must
         be finite, inside the domain, above ``theta_stop``, at N > 0 and, with a coefficient
         (``friction``, per lane), need no more than it (within
         :data:`verify.engine.failures.SLIP_SLACK_EPS`, as ``solve``'s guard); at a sample on the stop
@@ -188,15 +196,15 @@ class Ensemble:
         strictly before it.  ``failed:non_finite`` for a sample that is not finite,
         ``failed:event_detection`` for the others (an event that should have stopped the lane).
         """
-        n_lanes = samples.shape[1]
-        checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), len(grid))
-        inside = np.arange(len(grid))[None, :] < checked[:, None]  # (lanes, grid)
-        finite = np.isfinite(samples[:8]).all(axis=0) | ~inside
+        n_lanes, g = samples.shape[1], len(grid)
+        checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), g)
+        inside = np.arange(g)[None, :] < checked[:, None]  # (lanes, grid)
+        finite = np.isfinite(samples[:8, :, :g]).all(axis=0) | ~inside
         out = [None] * n_lanes
         for k in np.flatnonzero(~finite.all(axis=1)):
             out[k] = ("failed:non_finite", float(grid[np.argmin(finite[k])]))
         lo, hi = float(self.model.domain.theta_min), float(self.model.domain.theta_max)
-        th = samples[TH]
+        th = samples[TH, :, :g]
         with np.errstate(invalid="ignore"):
             ok = (lo < th) & (th < hi)
             if theta_stop is not None:
@@ -206,9 +214,9 @@ class Ensemble:
             # every lane is evaluated (a lane with a non-finite sample is judged above and its values are not
             # read; per_lane keeps each lane in its own SIMD groups, so it changes no other lane's bits)
             with np.errstate(invalid="ignore"):
-                ok &= batch.per_lane(self.normal_force, samples[:8], model_pars, checked)[0] > 0
+                ok &= batch.per_lane(self.normal_force, samples[:8], model_pars, checked)[0, :, :g] > 0
                 if friction is not None:
-                    need = batch.per_lane(self.friction_required, samples[:8], model_pars, checked)[1]
+                    need = batch.per_lane(self.friction_required, samples[:8], model_pars, checked)[1, :, :g]
                     mu = np.asarray(friction, dtype=float)[:, None]  # NaN where N <= 0, refused above
                     ok &= ~(need > mu + SLIP_SLACK_EPS * np.finfo(float).eps * np.maximum(1.0, mu))
         ok |= ~inside

@@ -380,7 +380,8 @@ class _GroupRun:
     def rows(self, group, messages) -> list:
         ens, grid, n = self.ens, self.grid, self.n
         cols_group = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
-        samples = np.empty((len(ens.lanes.states), len(cols_group), len(grid)))  # (states, lanes, grid)
+        g = len(grid)  # (states, lanes, grid and each lane's padding to whole SIMD groups: Ensemble.sample_row)
+        samples = np.empty((len(ens.lanes.states), len(cols_group), ens.sample_row(g)))
         final_pars = np.empty((self.lane_pars.shape[0], len(cols_group)))
         failed = {}  # lane -> (outcome, time)
         for b in group:
@@ -389,7 +390,7 @@ class _GroupRun:
                 continue  # padding only
             at = cols - cols_group[0]
             if not messages and _batch_ok(b, len(grid)):
-                samples[:, at[0]:at[-1] + 1, :] = np.transpose(b.output[:, :, : len(cols)], (1, 2, 0))
+                samples[:, at[0]:at[-1] + 1, :g] = np.transpose(b.output[:, :, : len(cols)], (1, 2, 0))
                 final_pars[:, at] = b.local.pars[:, : len(cols)]
                 continue
             for k, j in zip(cols, at):  # again, each lane alone (module docstring)
@@ -398,8 +399,9 @@ class _GroupRun:
                 if failure is not None:
                     failed[j] = failure
                     continue
-                samples[:, j, :] = one.output[:, :, 0].T if one.output.shape[0] == len(grid) else np.nan
+                samples[:, j, :g] = one.output[:, :, 0].T if one.output.shape[0] == g else np.nan
                 final_pars[:, j] = one.local.pars[:, 0]
+        samples[:, :, g:] = samples[:, :, g - 1:g]  # each lane's padding: its last sample
         good = np.array([j not in failed for j in range(len(cols_group))])
         kept = samples if good.all() else np.ascontiguousarray(samples[:, good])
         chosen = cols_group[good]
@@ -442,14 +444,15 @@ def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, 
     lane = np.arange(len(indices))
     last = kept - 1
     run = np.arange(len(grid))[None, :] < kept[:, None]  # (lanes, grid)
+    g = len(grid)  # samples may carry each lane's padding to whole SIMD groups (Ensemble.sample_row)
     with np.errstate(invalid="ignore"):
         diag = batch.per_lane(ens.energy_terms, samples[:8], model_pars, kept)
         omega_z, terms = diag[0], diag[1:]
-        energy, scale = terms.sum(axis=0), np.abs(terms).sum(axis=0)
-        work = samples[ens.lanes.row("W")] if "W" in ens.lanes.states else 0.0
+        energy, scale = terms.sum(axis=0)[:, :g], np.abs(terms).sum(axis=0)[:, :g]
+        work = samples[ens.lanes.row("W"), :, :g] if "W" in ens.lanes.states else 0.0
         drift = (np.where(run, np.abs(energy + work - energy[:, :1]), -np.inf).max(axis=1)
                  / np.where(run, scale, -np.inf).max(axis=1))
-        th = samples[TH]
+        th = samples[TH, :, :g]
         q = {"max_theta": np.where(run, th, -np.inf).max(axis=1), "min_theta": np.where(run, th, np.inf).min(axis=1),
              "final_theta": th[lane, last],
              "max_theta_deviation": np.where(run, np.abs(th - refs[:, None]), -np.inf).max(axis=1)}
@@ -457,7 +460,7 @@ def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, 
             q[f"final_{name}"] = samples[i, lane, last]
         if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself
             # is between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
-            need = batch.per_lane(ens.friction_required, samples[:8], model_pars, kept)
+            need = batch.per_lane(ens.friction_required, samples[:8], model_pars, kept)[:, :, :g]
             need = np.where(run & (need[0] > 0), need[1], np.nan)
             q["max_friction_required_on_grid"] = np.fmax.reduce(need, axis=1)
     wanted = set(spec.record) & set(SENSE_KEYS)  # only where asked: the windows cost a filter each
