@@ -5,6 +5,8 @@ recorded one), ``log`` (colour on a log scale) and optionally ``panels`` (an axi
 value).  Axes not drawn are averaged over (the title says so).  Points a run did not reach
 (NaN) are left white.
 
+Every axis and the colour bar say their unit (:mod:`verify.sweep.units`).
+
 A yes/no quantity (:data:`verify.sweep.spec.YES_NO`: ``slipped``, the retrograde turn, ...) and
 ``outcome`` (how each run ended) are categories, not numbers: they are drawn one run a cell in
 the report's yes/no colours (:mod:`verify.style`), with a legend that names each category
@@ -18,6 +20,7 @@ import math
 import numpy as np
 
 from .spec import ALWAYS, OUTCOME, YES_NO, SweepSpec
+from .units import RATIO, axis_unit, label, quantity_unit
 
 
 def grid_of(spec: SweepSpec, rows: list, quantity: str, x: str, y: str, panel_value=None, panels: str = None):
@@ -107,7 +110,7 @@ def render(spec: SweepSpec, rows: list, title: str = None) -> bytes:
             if positive.size:
                 norm = LogNorm(vmin=positive.min(), vmax=positive.max())
         mesh = ax.pcolormesh(X, Y, np.ma.masked_invalid(Z), shading="nearest", norm=norm, cmap="viridis")
-        fig.colorbar(mesh, ax=ax, label=quantity)
+        fig.colorbar(mesh, ax=ax, label=label(quantity, quantity_unit(spec.model, quantity)))
         _dress(ax, spec, x, y, panels, pv)
     head = title or plot.get("title") or f"{spec.name}: {quantity}"
     if averaged:
@@ -152,9 +155,9 @@ def render_categories(spec: SweepSpec, rows: list, quantity: str, title: str = N
         for r in rows:
             if panels is not None and r[f"in_{panels}"] != pv:
                 continue
-            label = _label(spec, quantity, r)
-            counts[label] += 1
-            Z[yi[r[f"in_{y}"]], xi[r[f"in_{x}"]]] = code[label]
+            category = _label(spec, quantity, r)
+            counts[category] += 1
+            Z[yi[r[f"in_{y}"]], xi[r[f"in_{x}"]]] = code[category]
         ax.pcolormesh(xs, ys, np.ma.masked_invalid(Z), shading="nearest", cmap=cmap, norm=norm)
         _dress(ax, spec, x, y, panels, pv)
     handles = [Patch(facecolor=palette[code[c]], edgecolor="0.5", label=f"{c} ({counts[c]})") for c in cats]
@@ -172,7 +175,8 @@ def _dress(ax, spec, x: str, y: str, panels, value) -> None:
     for name, axis_set in ((x, ax.set_xscale), (y, ax.set_yscale)):
         if next(a.scale for a in spec.axes if a.name == name) == "log":
             axis_set("log")
-    ax.set_xlabel(x)
-    ax.set_ylabel(y)
+    ax.set_xlabel(label(x, axis_unit(spec.model, x)))
+    ax.set_ylabel(label(y, axis_unit(spec.model, y)))
     if panels:
-        ax.set_title(f"{panels} = {value:.4g}", fontsize=9)
+        unit = axis_unit(spec.model, panels)
+        ax.set_title(f"{panels} = {value:.4g}" + ("" if unit == RATIO else f" {unit}"), fontsize=9)
