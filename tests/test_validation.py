@@ -13,6 +13,7 @@ from models import get_model
 from models.ring_dissipation import annulus_inertia
 from models.symbols import STATE_NAMES
 from verify import solve
+from verify.cli import main
 from verify.sweep import (
     SPECS, InvalidPoint, SpecError, Store, SweepTooLarge, estimate, load, parse, run_sweep, runner,
 )
@@ -120,6 +121,19 @@ def test_an_axis_across_the_domain_names_its_first_bad_point(tmp_path):
     with pytest.raises(InvalidPoint) as err:
         run_sweep(parse(text), progress=False)
     assert err.value.index == 8
+
+
+def test_a_refused_sweep_prints_one_line_and_no_plan(tmp_path, capsys):
+    """The command line on a spec with a bad point: exit 2 and the one line naming it, not the plan line
+    (size and estimated time) first.  Control: the same spec corrected prints its plan."""
+    path = tmp_path / "v.toml"
+    path.write_text(spec_text(tmp_path, axis="theta", lo=-0.5, hi=3.5, count=9, start="psidot = 5"))
+    assert main(["sweep", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "point 0 of 9 (theta = -0.5)" in err[0], err
+    path.write_text(spec_text(tmp_path, axis="theta", lo=0.5, hi=1.5, count=3, start="psidot = 5"))
+    assert main(["sweep", str(path)]) == 0
+    assert "v:" in capsys.readouterr().err
 
 
 def test_starts_below_the_stop_angle_are_refused(tmp_path):
@@ -311,9 +325,10 @@ def test_a_grid_typo_is_refused_at_once_without_building_the_grid(tmp_path):
 def test_the_size_is_stated_before_the_run_and_yes_overrides_the_limits(tmp_path, monkeypatch, capsys):
     spec = parse(spec_text(tmp_path))
     monkeypatch.setitem(runner.LIMITS, "points", 2)
-    with pytest.raises(SweepTooLarge, match="3 points \\(limit 2\\)"):
+    with pytest.raises(SweepTooLarge, match="3 points \\(limit 2\\)") as err:
         run_sweep(spec, threads=1, progress=True)
-    assert "v: 3 points in 1 chunks" in capsys.readouterr().err
+    assert "v: 3 points in 1 chunks" in str(err.value)  # the plan is in the one line of the refusal
+    assert capsys.readouterr().err == ""
     assert not (tmp_path / "v.sqlite").exists()
     result = run_sweep(spec, threads=1, progress=False, yes=True)
     assert result.rows == 3 and result.estimate.points == 3

@@ -197,22 +197,23 @@ def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: 
 
     First (nothing computed, nothing written): a spec that records a sense of the orbit needs its
     reading, ``senses`` (:func:`verify.studies.orbits.senses`; :func:`verify.sweep.engine.check_readings`),
-    then the size is stated on stderr (with ``progress``) and checked against :data:`LIMITS` --
-    :class:`SweepTooLarge` unless ``yes`` --, then every point is checked as a start --
-    :class:`verify.sweep.spec.InvalidPoint` naming the first bad one.  All are
+    then the size is checked against :data:`LIMITS` -- :class:`SweepTooLarge` unless ``yes`` --, then
+    every point is checked as a start -- :class:`verify.sweep.spec.InvalidPoint` naming the first bad
+    one --, and only then is the size stated on stderr (with ``progress``).  The errors are
     :class:`verify.sweep.spec.SpecError`.
     """
     check_readings(spec, senses)
     threads = threads or os.cpu_count() or 1
     t0 = time.monotonic()
     cost = estimate(spec, threads)
-    if progress:
-        print(cost.describe(spec.name), file=sys.stderr, flush=True)
     over = cost.over()
     if over and not yes:
-        raise SweepTooLarge(f"sweep {spec.name!r} is too large: {'; '.join(over)}.  Check the axes' counts, "
-                            "[sweep] samples and chunk; to run it anyway pass yes=True (command line: --yes)", cost)
+        raise SweepTooLarge(f"sweep {spec.name!r} is too large: {'; '.join(over)} ({cost.describe(spec.name)}).  "
+                            "Check the axes' counts, [sweep] samples and chunk; to run it anyway pass yes=True "
+                            "(command line: --yes)", cost)
     validate_points(spec)
+    if progress:  # after the checks: a refused sweep gets its one line and nothing else
+        print(cost.describe(spec.name), file=sys.stderr, flush=True)
     with Store(spec, store_path) as store:
         done = store.done_chunks()
         todo = [c for c in range(spec.n_chunks) if c not in done]
