@@ -33,16 +33,30 @@ from models.base import Model
 from models.symbols import ACCELERATIONS, STATE, STATE_NAMES, g, theta
 
 from ..precision import Precision
+from .compact import compact
 
 
 def to_heyoka(expr: sp.Expr, mapping: dict):
-    """Convert a sympy expression, refusing constants heyoka would round to double."""
+    """Convert a sympy expression in its compact form, refusing constants heyoka would round to double.
+
+    The expression is first rewritten by :func:`verify.engine.compact.compact` (an identity: collected
+    over the monomials of the symbols ``mapping`` sends to heyoka variables or expressions of them,
+    the state and the accelerations, never the parameters), so that every route to heyoka -- a
+    system, its events, a cfunc -- computes the same expression in the same cheap form.
+    """
+    expr = sp.sympify(expr)
     for atom in sp.preorder_traversal(expr):
         if isinstance(atom, sp.Rational) and not atom.is_Integer and atom.q & (atom.q - 1):
             raise ValueError(f"the constant {atom} would be rounded to double; keep it as a parameter")
         if isinstance(atom, sp.Float):
             raise ValueError(f"the float constant {atom} would be rounded to double; use exact numbers")
-    return hy.from_sympy(sp.sympify(expr), mapping)
+    return hy.from_sympy(compact(expr, _state_like(mapping)), mapping)
+
+
+def _state_like(mapping: dict) -> tuple:
+    """The symbols of ``mapping`` whose heyoka value holds a variable (the state, expressions of it);
+    not the parameters (``par[i]``) and numbers, which stay inside the coefficients."""
+    return tuple(s for s, v in mapping.items() if isinstance(s, sp.Symbol) and hy.get_variables(v))
 
 
 @dataclass(frozen=True)

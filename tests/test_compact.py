@@ -1,0 +1,150 @@
+"""The compact forms heyoka receives (verify.engine.compact) are identities, and shorter.
+
+Identity, checked exactly: every expression compiled for a model (its eight right-hand sides, the
+terminal events' functions, the invariants, the normal and horizontal forces, the Chaplygin rates)
+and its compact form are evaluated at random exact points -- rational rates and parameters, and
+sin/cos of each angle from a rational t by sin = 2t/(1+t^2), cos = (1-t^2)/(1+t^2), so sin^2 + cos^2 = 1
+holds exactly and the trigonometric rewriting is exercised -- and the difference must be exactly 0
+(sympy's rational arithmetic; with a square root of a non-square rational, the difference is
+denested with radsimp and must expand to 0).  This is a route independent of the compaction:
+substitution and arithmetic on numbers, no cancelling or factoring of expressions.  Negative
+control: the same check flags a rewriting with a wrong trigonometric rule (sin^2 -> 1 + cos^2).
+"""
+from __future__ import annotations
+
+import random
+
+import heyoka as hy
+import pytest
+import sympy as sp
+
+from models import ALL_NAMES, get_model, sources
+from models.bodies import shipped
+from models.symbols import ACCELERATIONS, STATE, STATE_NAMES
+from verify.engine.compact import compact
+from verify.engine.compile import FRICTION, contact_event_function, slip_event_function
+
+VARIABLES = STATE + ACCELERATIONS
+POINTS = 3  # random exact points per expression: a non-identity that is a rational function vanishes on a
+#           # hypersurface, so a single random point already exposes it with probability 1
+
+
+def _expressions(model) -> list:
+    out = [rhs for _, rhs in model.rhs()]
+    out += [model.domain.theta_min, model.domain.theta_max]
+    out += [inv.expr for inv in model.invariants]
+    for e in (contact_event_function(model), slip_event_function(model), model.normal_force):
+        if e is not None:
+            out.append(e)
+    if model.horizontal_force is not None:
+        out += list(model.horizontal_force)
+    if model.chaplygin is not None:
+        out += list(model.chaplygin.rates)
+    return out
+
+
+def _point(expr, rng: random.Random) -> dict:
+    """Exact values for every symbol and for sin/cos of every angle of ``expr``."""
+    values = {}
+    for f in sorted(expr.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
+        a = f.args[0]
+        if sp.sin(a) in values:
+            continue
+        t = sp.Rational(rng.randint(1, 97), rng.randint(1, 97))
+        values[sp.sin(a)] = 2 * t / (1 + t ** 2)
+        values[sp.cos(a)] = (1 - t ** 2) / (1 + t ** 2)
+    for s in sorted(expr.free_symbols, key=lambda s: s.name):
+        values[s] = sp.Rational(rng.randint(1, 199), rng.randint(1, 53))
+    return values
+
+
+def _at(expr, values: dict):
+    trig = {k: v for k, v in values.items() if not isinstance(k, sp.Symbol)}
+    return expr.xreplace(trig).xreplace({k: v for k, v in values.items() if isinstance(k, sp.Symbol)})
+
+
+def differs(original, rewritten, seed: int) -> bool:
+    """True if ``original`` and ``rewritten`` differ at one of POINTS random exact points."""
+    rng = random.Random(seed)
+    both = original + rewritten  # every atom of either expression gets a value
+    for _ in range(POINTS):
+        values = _point(both, rng)
+        a, b = _at(original, values), _at(rewritten, values)
+        if a.has(sp.zoo, sp.nan) or b.has(sp.zoo, sp.nan):
+            continue  # a pole of the random point: draw another
+        d = sp.expand(sp.radsimp(sp.together(a - b)))
+        if d != 0:
+            return True
+    return False
+
+
+def _models():
+    names = [(n, e) for n in ALL_NAMES for e in sources(n)]
+    return names + [("body:" + b, "derived") for b in shipped()]
+
+
+@pytest.mark.parametrize("name,equations", _models())
+def test_compact_forms_are_identities(name, equations):
+    model = get_model(name, equations)
+    for i, expr in enumerate(_expressions(model)):
+        expr = sp.sympify(expr)
+        new = compact(expr, VARIABLES)
+        assert not differs(expr, new, seed=i), f"{name} ({equations}) expression {i}: {expr} != {new}"
+        assert sp.count_ops(new) <= sp.count_ops(expr), f"{name}: the compact form of expression {i} is longer"
+
+
+def test_coulomb_and_smooth_systems_are_identities():
+    from models import coulomb, smooth_friction
+
+    _, sliding, _ = coulomb.body("disk+coulomb")
+    exprs = list(sliding.rhs) + [sliding.normal_force, sliding.painleve_margin, sliding.energy]
+    _, smooth, _ = smooth_friction.body("disk")
+    exprs += list(smooth.rhs) + [smooth.normal_force, smooth.painleve_margin]
+    extra = (coulomb.slip_speed, coulomb.slip_direction, coulomb.work, smooth_friction.slip_e1,
+             smooth_friction.slip_h, smooth_friction.work)
+    for i, expr in enumerate(exprs):
+        new = compact(sp.sympify(expr), VARIABLES + extra)
+        assert not differs(sp.sympify(expr), new, seed=i), f"expression {i}: {expr} != {new}"
+
+
+def test_a_wrong_rewriting_is_flagged():
+    """Negative control: sin^2 -> 1 + cos^2 (the wrong sign) in the disk's psi'' and in its compact form."""
+    model = get_model("disk")
+    psiddot = sp.sympify(model.accelerations[2])
+    theta = STATE[0]
+    assert sp.sin(theta) ** 2 in psiddot.atoms(sp.Pow)  # the control changes something
+    wrong = sp.expand(psiddot).subs(sp.sin(theta) ** 2, 1 + sp.cos(theta) ** 2)
+    assert differs(psiddot, wrong, seed=0)
+    assert not differs(psiddot, sp.expand(psiddot).subs(sp.sin(theta) ** 2, 1 - sp.cos(theta) ** 2), seed=0)
+
+
+def test_compact_is_deterministic_and_leaves_other_forms():
+    """The same expression gives the same form (the compiled code's cache key); an expression with no
+    polynomial variable and nothing to shorten comes back as it was, and FRICTION stays a coefficient."""
+    model = get_model("disk")
+    rhs = sp.sympify(model.accelerations[0])
+    from verify.engine.compact import _compact
+
+    gens = tuple(sorted((v for v in VARIABLES if rhs.has(v)), key=lambda s: s.name))
+    assert sp.srepr(_compact.__wrapped__(rhs, gens)) == sp.srepr(_compact.__wrapped__(rhs, gens))
+    assert compact(STATE[3], VARIABLES) == STATE[3]
+    slip = slip_event_function(model)
+    assert FRICTION in compact(slip, VARIABLES).free_symbols
+
+
+def test_disk_decomposition_is_shorter():
+    """heyoka's decomposition of the disk's system and events: the compact form has fewer terms than
+    the uncompacted one (the number itself is reported by the benchmark)."""
+    from verify.engine.compile import symbol_map
+
+    model = get_model("disk")
+    variables = tuple(hy.make_vars(*STATE_NAMES))
+    mapping = symbol_map(model, variables)
+    exprs = [rhs for _, rhs in model.rhs()]
+    sizes = []
+    for convert in (lambda e: hy.from_sympy(sp.sympify(e), mapping),
+                    lambda e: hy.from_sympy(compact(sp.sympify(e), VARIABLES), mapping)):
+        system = [(v, convert(e)) for v, e in zip(variables, exprs)]
+        ta = hy.taylor_adaptive(system, [0.5] * 8, pars=[0.25, 980.0], compact_mode=True)
+        sizes.append(len(ta.decomposition) - 2 * len(variables))
+    assert sizes[1] < sizes[0], sizes

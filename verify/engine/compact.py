@@ -1,0 +1,179 @@
+"""Right-hand sides in the form heyoka's Taylor recursion computes cheaply (issue 33, item 3).
+
+The derivation (:mod:`models.rolling`) leaves each acceleration as one quotient with an expanded
+numerator: ``(k phidot^2 sin cos + phidot^2 sin cos + g cos + ...) / (k + 1)``.  heyoka decomposes
+an expression into elementary terms and computes every term's Taylor coefficients on every step;
+a product or quotient of two non-constant terms, a power and a sine or cosine each cost a
+convolution of the order (~20 in double), a sum or a product with one parameter or number
+almost nothing.  The expanded numerator repeats the same products of the rates (``phidot^2``
+with ``sin cos`` twice, once with ``k``), and the common quotient divides them all.
+
+:func:`compact` rewrites an expression as a sum over the monomials of its *polynomial
+variables* (the rates, the accelerations an event function reads: symbols that enter only
+polynomially, never inside a function), each monomial times one coefficient in the other symbols
+(the angles' sines and cosines, the parameters), the common denominator divided into each
+coefficient and cancelled there:
+
+    thetaddot = -(g cos / (k + 1) + phidot^2 sin cos + phidot psidot (2k + 1) sin / (k + 1))
+
+A coefficient is factored, and where a rule of trigonometry shortens it (sin^2 = 1 - cos^2 and
+back) the shorter form is kept; monomial factors common to every term are pulled out
+(``2 thetadot (...)``).  heyoka then shares equal subexpressions across the system and its
+events (its decomposition keeps one term per distinct expression).  On the thin disk's six
+equations this takes heyoka's decomposition from 54 terms to 43 (62 to 52 with the terminal
+events); ``python -m verify bench`` reports every model's.
+
+It is an identity: the same rational function of the same symbols, rearranged
+(``tests/test_compact.py`` checks every model's right-hand side, events and invariants against
+the uncompacted expressions at random exact points).  The results of a run move by ulps (the
+operations are done in another order), amplified by the flow's conditioning as any rounding is.
+An expression that is not polynomial in any symbol (a square root of the rates, an absolute
+value) is returned as it was; so is a form that would not be shorter, or that would bring in a
+constant heyoka would round (a rational whose denominator is not a power of two).  The result
+depends only on the expression (sympy's canonical ordering): the same compiled code every run.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import sympy as sp
+
+
+def polynomial_symbols(expr: sp.Expr, candidates) -> tuple:
+    """The ``candidates`` that occur in ``expr`` only polynomially (never inside a function or a
+    non-integer power), sorted by name.  These are the variables :func:`compact` collects in."""
+    inside = set()
+    for node in sp.preorder_traversal(expr):
+        if isinstance(node, sp.Function) or (isinstance(node, sp.Pow) and not node.exp.is_Integer):
+            inside |= node.free_symbols
+    return tuple(sorted((s for s in candidates if s in expr.free_symbols and s not in inside), key=lambda s: s.name))
+
+
+def compact(expr: sp.Expr, variables) -> sp.Expr:
+    """``expr`` collected over the monomials of its polynomial ``variables`` (module docstring).
+
+    Parameters
+    ----------
+    expr : sympy expression
+    variables : iterable of sympy symbols
+        The symbols that may be collected in (a model's state symbols and accelerations; never
+        its parameters).  Only those that occur polynomially are (:func:`polynomial_symbols`).
+
+    Returns
+    -------
+    sympy expression
+        Identically equal to ``expr`` (the same rational function), never longer by
+        :func:`sympy.count_ops`.
+    """
+    expr = sp.sympify(expr)
+    return _compact(expr, polynomial_symbols(expr, variables))
+
+
+@lru_cache(maxsize=4096)
+def _compact(expr: sp.Expr, gens: tuple) -> sp.Expr:
+    plain, atoms = _atomized(expr)
+    candidate = _coefficient(plain, atoms) if not gens else _collected(plain, gens, atoms)
+    if candidate is None:
+        return expr
+    candidate = candidate.xreplace({a: f for a, f in atoms.items()})
+    if not _exact_constants(candidate) or sp.count_ops(candidate) > sp.count_ops(expr):
+        return expr
+    return candidate
+
+
+def _atomized(expr: sp.Expr) -> tuple:
+    """(``expr`` with every function application and root replaced by a plain symbol, {symbol: what it stands for}).
+
+    The rational arithmetic (cancel, factor) is then done on polynomials in plain symbols, which is
+    what makes it fast (sympy's polynomial routines on sin(theta), sqrt(...) as generators recompute
+    their structure at every step).  ``q^(p/n)`` (p/n not an integer) becomes ``R^p`` with R standing
+    for ``q^(1/n)``.  The symbols are numbered in sympy's canonical order of what they stand for, so
+    the same expression gives the same symbols.
+    """
+    roots = {}
+    for node in sp.preorder_traversal(expr):
+        if isinstance(node, sp.Pow) and node.exp.is_Rational and not node.exp.is_Integer:
+            roots.setdefault(node.base ** sp.Rational(1, node.exp.q), None)
+    functions = [f for f in expr.atoms(sp.Function)]
+    standing = sorted(set(functions) | set(roots), key=sp.default_sort_key)
+    atoms = {sp.Symbol(f"compact_atom_{i}"): f for i, f in enumerate(standing)}
+    back = {f: a for a, f in atoms.items()}
+
+    def replace(node):
+        if node in back:
+            return back[node]
+        if isinstance(node, sp.Pow) and node.exp.is_Rational and not node.exp.is_Integer:
+            root = node.base ** sp.Rational(1, node.exp.q)
+            if root in back:
+                return back[root] ** node.exp.p
+        if node.args:
+            return node.func(*[replace(a) for a in node.args])
+        return node
+
+    return replace(expr), atoms
+
+
+def _collected(expr: sp.Expr, gens: tuple, atoms: dict):
+    """sum over monomials m of gens: (coefficient of m / denominator) m, or None if not polynomial."""
+    numerator, denominator = sp.fraction(sp.together(expr))
+    gens = tuple(v for v in gens if not denominator.has(v))  # a slip speed that divides: a coefficient's
+    if not gens:
+        return _coefficient(expr, atoms)
+    try:
+        poly = sp.Poly(sp.expand(numerator), *gens)
+    except sp.PolynomialError:
+        return None
+    if any(c.has(*gens) for c in poly.coeffs()):
+        return None
+    terms = []
+    for powers, coefficient in poly.terms():
+        monomial = sp.Mul(*[v ** n for v, n in zip(gens, powers)])
+        terms.append(_coefficient(coefficient / denominator, atoms) * monomial)
+    return sp.factor_terms(sp.Add(*terms))
+
+
+def _coefficient(expr: sp.Expr, atoms: dict) -> sp.Expr:
+    """A coefficient (no polynomial variable) cancelled and factored, in its shortest trigonometric form.
+
+    ``expr`` is atomized (:func:`_atomized`, ``atoms`` says what each symbol stands for).  Tried: as
+    it is; with sin(a)^2 -> 1 - cos(a)^2; with cos(a)^2 -> 1 - sin(a)^2 (each angle a with both);
+    the shortest by count_ops wins, the first on a tie (deterministic).
+    """
+    forms = [_factored(expr)]
+    present = expr.free_symbols
+    by_value = {f: a for a, f in atoms.items() if a in present}
+    for f in sorted(by_value, key=sp.default_sort_key):
+        if not isinstance(f, sp.sin) or sp.cos(f.args[0]) not in by_value:
+            continue
+        s, c = by_value[f], by_value[sp.cos(f.args[0])]
+        forms.append(_factored(_reduced(expr, s, c)))
+        forms.append(_factored(_reduced(expr, c, s)))
+    return min(forms, key=sp.count_ops)
+
+
+def _reduced(expr: sp.Expr, a: sp.Symbol, b: sp.Symbol) -> sp.Expr:
+    """``expr`` with every a^2 replaced by 1 - b^2 (a, b: the sine and cosine of one angle, or the reverse)."""
+    numerator, denominator = sp.fraction(sp.together(expr))
+
+    def reduce(p):
+        return sp.expand(sp.expand(p).subs(a ** 2, 1 - b ** 2))
+
+    return reduce(numerator) / reduce(denominator)
+
+
+def _factored(expr: sp.Expr) -> sp.Expr:
+    try:
+        return sp.factor(sp.cancel(expr))
+    except sp.PolynomialError:  # an algebraic extension sympy cannot factor over: leave it
+        return expr
+
+
+def _exact_constants(expr: sp.Expr) -> bool:
+    """False if ``expr`` holds a float or a rational whose denominator is not a power of two
+    (:func:`verify.engine.compile.to_heyoka` refuses those: heyoka would round them to double)."""
+    for atom in expr.atoms(sp.Number):
+        if isinstance(atom, sp.Float):
+            return False
+        if isinstance(atom, sp.Rational) and not atom.is_Integer and atom.q & (atom.q - 1):
+            return False
+    return True
