@@ -8,20 +8,26 @@ convolution of the order (~20 in double), a sum or a product with one parameter 
 almost nothing.  The expanded numerator repeats the same products of the rates (``phidot^2``
 with ``sin cos`` twice, once with ``k``), and the common quotient divides them all.
 
-:func:`compact` rewrites an expression as a sum over the monomials of its *polynomial
-variables* (the rates, the accelerations an event function reads: symbols that enter only
-polynomially, never inside a function), each monomial times one coefficient in the other symbols
-(the angles' sines and cosines, the parameters), the common denominator divided into each
-coefficient and cancelled there:
+:func:`compact` rewrites an expression as a sum
+over the monomials of its *polynomial variables* (the rates, the accelerations an event function
+reads: symbols that enter only polynomially, never inside a function), each monomial times one
+coefficient in the other symbols (the angles' sines and cosines, the parameters), the sum divided
+once by the common denominator:
 
-    thetaddot = -(g cos / (k + 1) + phidot^2 sin cos + phidot psidot (2k + 1) sin / (k + 1))
+    thetaddot = -(g cos + phidot^2 (k + 1) sin cos + phidot psidot (2k + 1) sin) / (k + 1)
 
-A coefficient is factored, and where a rule of trigonometry shortens it (sin^2 = 1 - cos^2 and
-back) the shorter form is kept; monomial factors common to every term are pulled out
-(``2 thetadot (...)``).  heyoka then shares equal subexpressions across the system and its
-events (its decomposition keeps one term per distinct expression).  On the thin disk's six
-equations this takes heyoka's decomposition from 54 terms to 43 (62 to 52 with the terminal
-events); ``python -m verify bench`` reports every model's.
+which is paper Eq. 18 solved by hand.  A coefficient is cancelled and factored, and where a rule of
+trigonometry shortens it (sin^2 = 1 - cos^2 and back) the shorter form is kept; monomial factors
+common to every term are pulled out (``2 thetadot (...)``).  heyoka then shares equal
+subexpressions across the system and its events (its decomposition keeps one term per distinct
+expression).  On the thin disk this takes heyoka's decomposition from 54 terms to 44 (62 to 52 with
+the terminal events; Eq. 18 typed by hand, 40); ``python -m verify bench`` reports them.
+
+The denominator is not divided into each coefficient: that would make quotients of parameters such
+as (2k + 1)/(k + 1), rounded once and then wrong the same way on every step -- a systematic error
+under which the invariants drift like t rather than like the square root of the steps (measured: the
+Chaplygin integrals of a 2 s disk run in 160-bit MPFR drifted 6.5 times more, beyond the bound of
+``tests/test_conservation.py``).
 
 It is an identity: the same rational function of the same symbols, rearranged
 (``tests/test_compact.py`` checks every model's right-hand side, events and invariants against
@@ -128,8 +134,12 @@ def _collected(expr: sp.Expr, gens: tuple, atoms: dict):
     terms = []
     for powers, coefficient in poly.terms():
         monomial = sp.Mul(*[v ** n for v, n in zip(gens, powers)])
-        terms.append(_coefficient(coefficient / denominator, atoms) * monomial)
-    return sp.factor_terms(sp.Add(*terms))
+        terms.append(_coefficient(coefficient, atoms) * monomial)
+    # The common denominator divides the sum once, not each coefficient: a quotient of parameters such
+    # as (2k + 1)/(k + 1) would be rounded once and then bias every step the same way (a systematic error
+    # that makes the invariants drift like t, where the roundings of a state-dependent quotient average
+    # out like sqrt(steps): tests/test_conservation.py's MPFR drift bound caught it).
+    return sp.factor_terms(sp.Add(*terms)) / _coefficient(denominator, atoms)
 
 
 def _coefficient(expr: sp.Expr, atoms: dict) -> sp.Expr:
