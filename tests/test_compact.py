@@ -12,6 +12,7 @@ control: the same check flags a rewriting with a wrong trigonometric rule (sin^2
 """
 from __future__ import annotations
 
+import pickle
 import random
 
 import heyoka as hy
@@ -21,7 +22,8 @@ import sympy as sp
 from models import ALL_NAMES, get_model, sources
 from models.bodies import shipped
 from models.symbols import ACCELERATIONS, STATE, STATE_NAMES
-from verify.engine.compact import compact
+from verify.engine import compact as compact_module
+from verify.engine.compact import compact, compacted, polynomial_symbols
 from verify.engine.compile import FRICTION, contact_event_function, slip_event_function
 
 VARIABLES = STATE + ACCELERATIONS
@@ -123,10 +125,8 @@ def test_compact_is_deterministic_and_leaves_other_forms():
     polynomial variable and nothing to shorten comes back as it was, and FRICTION stays a coefficient."""
     model = get_model("disk")
     rhs = sp.sympify(model.accelerations[0])
-    from verify.engine.compact import _compact
-
-    gens = tuple(sorted((v for v in VARIABLES if rhs.has(v)), key=lambda s: s.name))
-    assert sp.srepr(_compact.__wrapped__(rhs, gens)) == sp.srepr(_compact.__wrapped__(rhs, gens))
+    gens = polynomial_symbols(rhs, VARIABLES)
+    assert sp.srepr(compacted(rhs, gens)) == sp.srepr(compacted(rhs, gens))
     assert compact(STATE[3], VARIABLES) == STATE[3]
     slip = slip_event_function(model)
     assert FRICTION in compact(slip, VARIABLES).free_symbols
@@ -148,3 +148,31 @@ def test_disk_decomposition_is_shorter():
         ta = hy.taylor_adaptive(system, [0.5] * 8, pars=[0.25, 980.0], compact_mode=True)
         sizes.append(len(ta.decomposition) - 2 * len(variables))
     assert sizes[1] < sizes[0], sizes
+
+
+def test_compact_forms_are_kept_on_disk_and_a_damaged_entry_is_computed_again(tmp_path, monkeypatch):
+    """A compact form is written under $HEYOKA_CACHE_DIR/compact and read back by a later process (the
+    memory cache cleared stands for one); garbage, or an expression in symbols the input does not have,
+    is computed again and rewritten.  Control that the reading is real: a valid entry planted under the
+    key is what compact returns."""
+    monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
+    model = get_model("disk")
+    rhs = sp.sympify(model.accelerations[0])
+    gens = polynomial_symbols(rhs, VARIABLES)
+    path = compact_module.cache_path(rhs, gens)
+    assert path.parent == tmp_path / "compact"
+    fresh = compacted(rhs, gens)
+    try:
+        compact_module._compact.cache_clear()
+        assert sp.srepr(compact(rhs, VARIABLES)) == sp.srepr(fresh)
+        assert path.is_file() and not list(path.parent.glob("*.tmp"))  # written whole, no temporary left
+        for damage in (b"not a pickle", path.read_bytes()[:20], pickle.dumps(sp.Symbol("stranger") * rhs)):
+            path.write_bytes(damage)
+            compact_module._compact.cache_clear()
+            assert sp.srepr(compact(rhs, VARIABLES)) == sp.srepr(fresh)
+            assert pickle.loads(path.read_bytes()) == fresh  # rewritten
+        path.write_bytes(pickle.dumps(sp.expand(rhs)))  # in the input's symbols: trusted, so it is read
+        compact_module._compact.cache_clear()
+        assert compact(rhs, VARIABLES) == sp.expand(rhs) != fresh
+    finally:
+        compact_module._compact.cache_clear()  # leave no form read from this temporary folder behind

@@ -41,10 +41,23 @@ An expression that is not polynomial in any symbol (a square root of the rates, 
 value) is returned as it was; so is a form that would not be shorter, or that would bring in a
 constant heyoka would round (a rational whose denominator is not a power of two).  The result
 depends only on the expression (sympy's canonical ordering): the same compiled code every run.
+
+The rewriting costs sympy seconds for a body file's model (cancel, factor and together on every
+coefficient: 2.6 s for body:oblate-ellipsoid's system, 5 s more with the slip event, where heyoka
+compiles it in 0.4 s), so every result is kept on disk (:func:`cache_directory`), keyed by the exact
+text of the expression and its variables (``sympy.srepr``), this module's source and sympy's version:
+a fresh process (a ``--body`` run, a test worker) reads it back in milliseconds.  Written atomically
+(a temporary file renamed); an entry that cannot be read, or that is not an expression in the
+input's symbols, is computed again and rewritten; a cache folder that cannot be written is only
+skipped.
 """
 from __future__ import annotations
 
+import hashlib
+import os
+import pickle
 from functools import lru_cache
+from pathlib import Path
 
 import sympy as sp
 
@@ -79,8 +92,51 @@ def compact(expr: sp.Expr, variables) -> sp.Expr:
     return _compact(expr, polynomial_symbols(expr, variables))
 
 
+def cache_directory() -> Path:
+    """Where compact forms are kept: ``$HEYOKA_CACHE_DIR/compact`` (next to heyoka's own cache and the
+    derived bodies of :func:`models.bodies.cache_directory`), else ``~/.cache/rolling-verify/compact``."""
+    base = os.environ.get("HEYOKA_CACHE_DIR")
+    return Path(base) / "compact" if base else Path.home() / ".cache" / "rolling-verify" / "compact"
+
+
+@lru_cache(maxsize=None)
+def _source_hash() -> str:
+    """sha256 of this module's source and sympy's version: a change to either makes every entry a miss."""
+    h = hashlib.sha256(Path(__file__).read_bytes())
+    h.update(sp.__version__.encode())
+    return h.hexdigest()
+
+
+def cache_path(expr: sp.Expr, gens: tuple) -> Path:
+    """The file that keeps the compact form of ``expr`` collected in ``gens``."""
+    key = hashlib.sha256((sp.srepr(expr) + "\n" + sp.srepr(gens) + "\n" + _source_hash()).encode()).hexdigest()
+    return cache_directory() / f"{key[:32]}.pickle"
+
+
 @lru_cache(maxsize=4096)
 def _compact(expr: sp.Expr, gens: tuple) -> sp.Expr:
+    """The compact form, from memory, else from the disk cache, else computed (:func:`compacted`) and written."""
+    path = cache_path(expr, gens)
+    try:
+        with open(path, "rb") as f:
+            kept = pickle.load(f)
+    except Exception:  # any unreadable entry is only a miss: missing, truncated or garbage (pickle raises
+        kept = None  # UnpicklingError, EOFError, ValueError, KeyError, ... depending on the damage)
+    if isinstance(kept, sp.Expr) and kept.free_symbols <= expr.free_symbols:
+        return kept
+    result = compacted(expr, gens)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_bytes(pickle.dumps(result))
+        os.replace(tmp, path)
+    except OSError:
+        pass
+    return result
+
+
+def compacted(expr: sp.Expr, gens: tuple) -> sp.Expr:
+    """The compact form of ``expr`` collected in ``gens`` computed afresh (no cache): :func:`compact`'s work."""
     plain, atoms = _atomized(expr)
     if not gens:
         candidate = _coefficient(plain, atoms)
