@@ -152,27 +152,45 @@ def test_disk_decomposition_is_shorter():
 
 def test_compact_forms_are_kept_on_disk_and_a_damaged_entry_is_computed_again(tmp_path, monkeypatch):
     """A compact form is written under $HEYOKA_CACHE_DIR/compact and read back by a later process (the
-    memory cache cleared stands for one); garbage, or an expression in symbols the input does not have,
-    is computed again and rewritten.  Control that the reading is real: a valid entry planted under the
-    key is what compact returns."""
+    memory cache cleared stands for one); garbage, a truncated entry, or an expression in symbols the
+    input does not have, is computed again and rewritten.  Control that the reading is real: a valid
+    entry planted under the key is what compact returns."""
     monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
-    model = get_model("disk")
-    rhs = sp.sympify(model.accelerations[0])
+    rhs = sp.sympify(get_model("disk").accelerations[0])
     gens = polynomial_symbols(rhs, VARIABLES)
     path = compact_module.cache_path(rhs, gens)
     assert path.parent == tmp_path / "compact"
-    fresh = compacted(rhs, gens)
+    form = compacted(rhs, gens)
+    fresh = compact_module.tree_text(form)
     try:
         compact_module._compact.cache_clear()
-        assert sp.srepr(compact(rhs, VARIABLES)) == sp.srepr(fresh)
-        assert path.is_file() and not list(path.parent.glob("*.tmp"))  # written whole, no temporary left
-        for damage in (b"not a pickle", path.read_bytes()[:20], pickle.dumps(sp.Symbol("stranger") * rhs)):
-            path.write_bytes(damage)
+        assert compact_module.tree_text(compact(rhs, VARIABLES)) == fresh
+        assert path.read_text() == fresh and not list(path.parent.glob("*.tmp"))  # whole, no temporary left
+        for damage in ("not an expression", fresh[:40], compact_module.tree_text(sp.Symbol("stranger") * rhs)):
+            path.write_text(damage)
             compact_module._compact.cache_clear()
-            assert sp.srepr(compact(rhs, VARIABLES)) == sp.srepr(fresh)
-            assert pickle.loads(path.read_bytes()) == fresh  # rewritten
-        path.write_bytes(pickle.dumps(sp.expand(rhs)))  # in the input's symbols: trusted, so it is read
+            assert compact_module.tree_text(compact(rhs, VARIABLES)) == fresh
+            assert path.read_text() == fresh  # rewritten
+        path.write_text(compact_module.tree_text(sp.expand(rhs)))  # in the input's symbols: trusted, so read
         compact_module._compact.cache_clear()
-        assert compact(rhs, VARIABLES) == sp.expand(rhs) != fresh
+        assert compact(rhs, VARIABLES) == sp.expand(rhs) != form
     finally:
         compact_module._compact.cache_clear()  # leave no form read from this temporary folder behind
+
+
+def test_a_form_read_back_is_the_tree_that_was_written(tmp_path, monkeypatch):
+    """A process that reads the cache compiles the same code as the one that wrote it: every compact form
+    of the disk's expressions comes back node for node (equal trees, ``==`` compares node for node).
+    Negative control: a pickle round trip, which rebuilds sympy trees evaluated, changes one of them
+    (-(a + b) becomes -a - b), so the comparison sees a form that is not kept."""
+    monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
+    exprs = [sp.sympify(e) for e in _expressions(get_model("disk"))]
+    try:
+        compact_module._compact.cache_clear()
+        written = [compact(e, VARIABLES) for e in exprs]
+        assert len(list((tmp_path / "compact").glob("*.tree"))) == len(set(exprs))
+        compact_module._compact.cache_clear()
+        assert [compact(e, VARIABLES) for e in exprs] == written
+        assert [pickle.loads(pickle.dumps(w)) for w in written] != written
+    finally:
+        compact_module._compact.cache_clear()

@@ -45,8 +45,10 @@ depends only on the expression (sympy's canonical ordering): the same compiled c
 The rewriting costs sympy seconds for a body file's model (cancel, factor and together on every
 coefficient: 2.6 s for body:oblate-ellipsoid's system, 5 s more with the slip event, where heyoka
 compiles it in 0.4 s), so every result is kept on disk (:func:`cache_directory`), keyed by the exact
-text of the expression and its variables (``sympy.srepr``), this module's source and sympy's version:
-a fresh process (a ``--body`` run, a test worker) reads it back in milliseconds.  Written atomically
+text of the expression and its variables (``sympy.srepr``), this module's source and sympy's version,
+and kept as text that is rebuilt node for node (:func:`tree_text`, :func:`from_tree_text`: a pickle
+would not give back the same tree): a fresh process (a ``--body`` run, a test worker) reads it back in milliseconds
+and compiles the same code as the process that wrote it.  Written atomically
 (a temporary file renamed); an entry that cannot be read, or that is not an expression in the
 input's symbols, is computed again and rewritten; a cache folder that cannot be written is only
 skipped.
@@ -55,7 +57,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import pickle
 from functools import lru_cache
 from pathlib import Path
 
@@ -108,27 +109,59 @@ def _source_hash() -> str:
 
 
 def cache_path(expr: sp.Expr, gens: tuple) -> Path:
-    """The file that keeps the compact form of ``expr`` collected in ``gens``."""
+    """The file that keeps the compact form of ``expr`` collected in ``gens`` (its :func:`tree_text`)."""
     key = hashlib.sha256((sp.srepr(expr) + "\n" + sp.srepr(gens) + "\n" + _source_hash()).encode()).hexdigest()
-    return cache_directory() / f"{key[:32]}.pickle"
+    return cache_directory() / f"{key[:32]}.tree"
+
+
+def tree_text(expr: sp.Basic) -> str:
+    """``expr`` as text, node for node: ``Type(arg, ...)`` in the order of the node's own ``args``, leaves
+    (symbols with their assumptions, numbers) by ``sympy.srepr``.  Not ``srepr`` itself, which reorders a
+    product's factors and splits its coefficient (-2 k as ``Mul(Integer(-1), Integer(2), k)``)."""
+    if not expr.args:
+        return sp.srepr(expr)
+    return f"{type(expr).__name__}({', '.join(tree_text(a) for a in expr.args)})"
+
+
+def from_tree_text(text: str) -> sp.Basic:
+    """The expression :func:`tree_text` wrote, rebuilt with sympy's evaluation off.
+
+    Not pickle, nor ``sympify``: both rebuild the tree *evaluated*, and sympy's constructors do not
+    keep every form they return -- ``-(a + b)`` (a product of -1 and a sum, which :func:`sympy.factor`
+    returns) comes back as ``-a - b``, two more operations for heyoka and another rounding, so a
+    process reading the cache would compile other code than the one that wrote it.  The text is
+    trusted as the cache folder is (it is evaluated); :func:`_compact` checks what it gives.
+    """
+    namespace = dict(vars(sp))
+    namespace["__builtins__"] = {}
+    with sp.evaluate(False):
+        return eval(text, namespace)  # our own text: see the docstring
 
 
 @lru_cache(maxsize=4096)
 def _compact(expr: sp.Expr, gens: tuple) -> sp.Expr:
-    """The compact form, from memory, else from the disk cache, else computed (:func:`compacted`) and written."""
+    """The compact form, from memory, else from the disk cache, else computed (:func:`compacted`) and written.
+
+    An entry is taken only if it is an expression in the input's symbols whose text it gives back (the
+    same tree); a computed form is kept only if its text gives back an equal tree (``==`` on sympy
+    trees compares node for node), else it is returned and computed again by the next process.
+    """
     path = cache_path(expr, gens)
     try:
-        with open(path, "rb") as f:
-            kept = pickle.load(f)
-    except Exception:  # any unreadable entry is only a miss: missing, truncated or garbage (pickle raises
-        kept = None  # UnpicklingError, EOFError, ValueError, KeyError, ... depending on the damage)
-    if isinstance(kept, sp.Expr) and kept.free_symbols <= expr.free_symbols:
+        text = path.read_text(encoding="utf-8")
+        kept = from_tree_text(text)
+    except Exception:  # any unreadable entry is only a miss: missing, truncated or garbage (eval raises
+        kept = None  # SyntaxError, NameError, TypeError, ... depending on the damage)
+    if isinstance(kept, sp.Expr) and kept.free_symbols <= expr.free_symbols and tree_text(kept) == text:
         return kept
     result = compacted(expr, gens)
+    text = tree_text(result)
     try:
+        if from_tree_text(text) != result:
+            return result
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_bytes(pickle.dumps(result))
+        tmp.write_text(text, encoding="utf-8")
         os.replace(tmp, path)
     except OSError:
         pass
