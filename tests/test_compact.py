@@ -163,19 +163,19 @@ def test_compact_forms_are_kept_on_disk_and_a_damaged_entry_is_computed_again(tm
     form = compacted(rhs, gens)
     fresh = compact_module.tree_text(form)
     try:
-        compact_module._compact.cache_clear()
+        compact_module.forget()
         assert compact_module.tree_text(compact(rhs, VARIABLES)) == fresh
         assert path.read_text() == fresh and not list(path.parent.glob("*.tmp"))  # whole, no temporary left
         for damage in ("not an expression", fresh[:40], compact_module.tree_text(sp.Symbol("stranger") * rhs)):
             path.write_text(damage)
-            compact_module._compact.cache_clear()
+            compact_module.forget()
             assert compact_module.tree_text(compact(rhs, VARIABLES)) == fresh
             assert path.read_text() == fresh  # rewritten
         path.write_text(compact_module.tree_text(sp.expand(rhs)))  # in the input's symbols: trusted, so read
-        compact_module._compact.cache_clear()
+        compact_module.forget()
         assert compact(rhs, VARIABLES) == sp.expand(rhs) != form
     finally:
-        compact_module._compact.cache_clear()  # leave no form read from this temporary folder behind
+        compact_module.forget()  # leave no form read from this temporary folder behind
 
 
 def test_a_form_read_back_is_the_tree_that_was_written(tmp_path, monkeypatch):
@@ -186,11 +186,11 @@ def test_a_form_read_back_is_the_tree_that_was_written(tmp_path, monkeypatch):
     monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
     exprs = [sp.sympify(e) for e in _expressions(get_model("disk"))]
     try:
-        compact_module._compact.cache_clear()
+        compact_module.forget()
         written = [compact(e, VARIABLES) for e in exprs]
         assert len(list((tmp_path / "compact").glob("*.tree"))) == len(set(exprs))
-        compact_module._compact.cache_clear()
+        compact_module.forget()
         assert [compact(e, VARIABLES) for e in exprs] == written
         assert [pickle.loads(pickle.dumps(w)) for w in written] != written
     finally:
-        compact_module._compact.cache_clear()
+        compact_module.forget()

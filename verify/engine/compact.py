@@ -168,6 +168,12 @@ def _compact(expr: sp.Expr, gens: tuple) -> sp.Expr:
     return result
 
 
+def forget() -> None:
+    """Empty the in-memory cache (the disk cache stays): the next :func:`compact` reads the disk as a fresh
+    process would."""
+    _compact.cache_clear()
+
+
 def compacted(expr: sp.Expr, gens: tuple) -> sp.Expr:
     """The compact form of ``expr`` collected in ``gens`` computed afresh (no cache): :func:`compact`'s work."""
     plain, atoms = _atomized(expr)
