@@ -14,6 +14,11 @@ from pathlib import Path
 
 import numpy as np
 
+from verify.studies import maps
+from verify.studies.orbits import senses
+from verify.sweep import parse
+from verify.sweep.engine import run_chunk
+
 DISK = """
 [sweep]
 name = "identity-disk"
@@ -151,16 +156,12 @@ theta_below = 0.6
 
 
 def results() -> dict:
-    from verify.studies import maps
-    from verify.sweep import parse
-    from verify.sweep.engine import run_chunk
-
     out = {}
     with tempfile.TemporaryDirectory() as tmp:
         for name, text in (("disk", DISK), ("falls", FALLS), ("steady", STEADY), ("ring", RING)):
             spec = parse(text.format(store=Path(tmp) / f"{name}.sqlite"))
             for bs in (4, 8):
-                out[f"sweep {name} bs={bs}"] = [run_chunk(spec, c, 2, bs) for c in range(spec.n_chunks)]
+                out[f"sweep {name} bs={bs}"] = [run_chunk(spec, c, 2, bs, senses=senses) for c in range(spec.n_chunks)]
     lin = 28.0
     for model, motion, kwargs in (("disk", "diameter-spin", {}), ("disk", "diameter-spin", {"step_cap": True}),
                                   ("sliding-disk", "diameter-spin", {}), ("disk", "straight-line", {}),

@@ -29,7 +29,7 @@ import numpy as np
 
 from models import get_model
 from verify.engine.compile import compile_model
-from verify.engine.lanes import simd_width
+from verify.engine.lanes import compile_lanes, simd_width
 from verify.precision import parse_precision
 from verify.studies import maps
 from verify.sweep import load, parse
@@ -108,10 +108,12 @@ def sweep_case(spec, chunks, bs):
 
 
 def map_case(bs):
-    _, system, _, n_model = maps.reduced_system("disk")
     rates, tilts = np.linspace(14.0, 42.0, 50), np.logspace(-6, -1, 40)
     runs = maps.prepare_runs("disk", "diameter-spin", rates, tilts, 10.0, {}, maps.CAP, False, bs)
-    pars = np.concatenate([runs.pars[:n_model], np.ones((1, runs.pars.shape[1]))])
+    ens = runs.ensemble
+    bare = compile_lanes(ens.model, "reduced", bs, ens.cooldown, bare=True, events=())  # no events, no alive
+    system = bare.template.sys
+    pars = np.stack([ens.record(runs.pars, name) for name in bare.layout.names])
 
     def engine():
         return maps.stability_map("disk", "diameter-spin", rates=rates, tilts=tilts, batch_size=bs,

@@ -25,11 +25,13 @@ import copy
 import os
 import sys
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import heyoka as hy
 import numpy as np
 
 from verify.studies import maps
+from verify.studies.thresholds import threshold
 
 SUBSET_SCALAR = 200  # trajectories
 SUBSET_BATCH = 2000  # trajectories
@@ -37,16 +39,21 @@ SUBSET_BATCH = 2000  # trajectories
 
 def scalar_loop(runs: maps.Runs, lanes) -> tuple:
     """max deviation and alive flag of ``lanes``, one scalar integrator each."""
-    variables, system, events, n = maps.reduced_system(runs.model)
+    lane_system = runs.ensemble.lanes  # the map's own equations and events, parameters by name
+    system = lane_system.template.sys
+    events = [(name, ev.expression, ev.direction) for name, ev in zip(lane_system.events, lane_system.template.t_events)]
+    alive, reason, t_stop, lower, upper = (lane_system.layout[k] for k in
+                                           ("alive", "reason", "t_stop", "theta_lower", "theta_upper"))
+    th, thd = lane_system.row("theta"), lane_system.row("thetadot")
 
     def freeze(code):
         def cb(ta, d_sgn):
-            if ta.pars[n] != 0.0:
-                ta.pars[n] = 0.0
-                ta.pars[n + 1] = code
-                ta.pars[n + 2] = ta.time
-                ta.state[0] = 0.5 * (ta.pars[n + 3] + ta.pars[n + 4])
-                ta.state[1] = 0.0
+            if ta.pars[alive] != 0.0:
+                ta.pars[alive] = 0.0
+                ta.pars[reason] = code
+                ta.pars[t_stop] = ta.time
+                ta.state[th] = 0.5 * (ta.pars[lower] + ta.pars[upper])
+                ta.state[thd] = 0.0
             return True
         return cb
 
@@ -54,7 +61,7 @@ def scalar_loop(runs: maps.Runs, lanes) -> tuple:
                 for i, (_, ex, d) in enumerate(events)]
     ta0 = hy.taylor_adaptive(list(system), runs.states[:, 0].copy(), pars=runs.pars[:, 0].copy(), t_events=t_events)
     kwargs = {} if runs.step_cap is None else {"max_delta_t": runs.step_cap}
-    dev, alive = [], []
+    dev, kept = [], []
     start = time.perf_counter()
     for k in lanes:
         ta = copy.deepcopy(ta0)
@@ -65,14 +72,14 @@ def scalar_loop(runs: maps.Runs, lanes) -> tuple:
         if out[0] != hy.taylor_outcome.time_limit:
             raise RuntimeError(f"scalar run {k} stopped with {out[0]}")
         dev.append(np.max(np.abs(out[-1][:, 0] - runs.ref[k])))
-        alive.append(ta.pars[n] != 0.0)
-    return time.perf_counter() - start, np.array(dev), np.array(alive)
+        kept.append(ta.pars[alive] != 0.0)
+    return time.perf_counter() - start, np.array(dev), np.array(kept)
 
 
 def serial_batches(runs: maps.Runs, batches) -> tuple:
     """max deviation and alive flag of every lane of ``batches``, one batch integrator reused."""
     b = runs.batch_size
-    ta = copy.deepcopy(maps.template(runs.model, b, runs.cooldown))
+    ta = copy.deepcopy(runs.ensemble.lanes.template)
     grid = np.repeat(runs.grid, b).reshape(-1, b)
     kwargs = {} if runs.step_cap is None else {"max_delta_t": runs.step_cap}
     dev, alive = [], []
@@ -85,14 +92,12 @@ def serial_batches(runs: maps.Runs, batches) -> tuple:
         ta.pars[:] = runs.pars[:, cols]
         out = ta.propagate_grid(grid, **kwargs)[-1]
         dev.append(np.max(np.abs(out[:, 0, :] - runs.ref[None, cols]), axis=0))
-        alive.append(ta.pars[runs.n_model_pars] != 0.0)
+        alive.append(runs.ensemble.record(ta.pars, "alive") != 0.0)
     return time.perf_counter() - start, np.concatenate(dev), np.concatenate(alive)
 
 
 def threaded_reuse(runs: maps.Runs, threads: int) -> tuple:
     """Every batch of the map, ``threads`` workers each reusing one integrator (no copy per batch)."""
-    from concurrent.futures import ThreadPoolExecutor
-
     n_batches = runs.states.shape[1] // runs.batch_size
     shares = np.array_split(np.arange(n_batches), threads)
     start = time.perf_counter()
@@ -103,8 +108,6 @@ def threaded_reuse(runs: maps.Runs, threads: int) -> tuple:
 
 
 def main(model="disk", motion="diameter-spin", n_rates=100, n_tilts=100):
-    from verify.studies.thresholds import threshold
-
     lin = float(threshold(model, motion).value)
     rates = np.linspace(0.5 * lin, 2.0 * lin, int(n_rates))
     tilts = np.logspace(-6, -1, int(n_tilts))

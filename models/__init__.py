@@ -27,7 +27,7 @@ _BUILDERS = {"disk": "disk", "ring": "ring", "hurricane": "hurricane", "sliding-
 
 
 def _dissipative(name: str):
-    from . import dissipative, ring_dissipation
+    from . import dissipative, ring_dissipation  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
     body, law = name.split("+", 1)
     return dissipative.dissipative_disk(law) if body == "disk" else ring_dissipation.dissipative_ring(law)
@@ -42,30 +42,32 @@ def sources(name: str) -> tuple:
 def get_model(name: str, equations: str = "derived"):
     """The model called ``name`` with equations from ``equations`` ('derived' or 'paper').
 
-    ``name`` is one of :data:`MODEL_NAMES` (the paper's conservative bodies) or of
-    :data:`DISSIPATIVE_NAMES` (a body with an explicit dissipative term).
+    ``name`` is one of :data:`MODEL_NAMES` (the paper's conservative bodies), of
+    :data:`DISSIPATIVE_NAMES` (a body with an explicit dissipative term), ``body:NAME`` (a shipped body file) or
+    ``body:NAME@HASH`` (any body file once loaded, :func:`models.bodies.register`).
     """
     _check_name(name)
     allowed = sources(name)
     if equations not in allowed:
         raise ValueError(f"equations={equations!r} for model {name!r}; allowed: {', '.join(allowed)}")
-    if name.startswith(BODY_PREFIX):  # a shipped body file (models/bodies/NAME.toml), derived once
-        from .bodies import load, model_of
+    if name.startswith(BODY_PREFIX):  # a body file: shipped (body:NAME) or registered (body:NAME@HASH), derived once
+        from .bodies import model_of, resolve  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
-        return model_of(load(name[len(BODY_PREFIX):]))
+        return model_of(resolve(name[len(BODY_PREFIX):]))
     if name in _BUILDERS:
         return importlib.import_module(f".{_BUILDERS[name]}", __name__).model(equations)
     return _dissipative(name)
 
 
 def _check_name(name: str) -> None:
-    if name.startswith(BODY_PREFIX):
-        from .bodies import shipped
+    if name.startswith(BODY_PREFIX):  # body:NAME (shipped) or body:NAME@HASH (a file loaded here or saved by another process)
+        from .bodies import InvalidBody, resolve  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
-        if name[len(BODY_PREFIX):] in shipped():
-            return
-        raise ValueError(f"unknown body {name!r}; shipped bodies: {', '.join(BODY_PREFIX + n for n in shipped())} "
-                         "(a body file of your own: --body FILE.toml, or models.bodies.load(path))")
+        try:
+            resolve(name[len(BODY_PREFIX):])
+        except InvalidBody as err:
+            raise ValueError(str(err)) from None
+        return
     if name not in ALL_NAMES:
         hint = ""
         if name in ALIASES:
@@ -77,11 +79,11 @@ def _check_name(name: str) -> None:
 def __getattr__(attr: str):
     """``models.Model`` and the submodules (``models.disk``), imported when first used."""
     if attr == "Model":
-        from .base import Model
+        from .base import Model  # lazy: sympy (0.5 s) kept out of --help, which imports this package
 
         return Model
     if attr in ("body_of_revolution", "load_body"):  # a body of revolution from its profile (models.bodies)
-        from . import bodies
+        from . import bodies  # lazy: sympy (0.6 s) kept out of --help, which imports this package
 
         return bodies.body_of_revolution if attr == "body_of_revolution" else bodies.load
     try:

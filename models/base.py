@@ -9,12 +9,12 @@ runtime ``par[i]``, so a sweep over parameters needs no recompilation.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Optional
 
 import sympy as sp
 
-from .symbols import STATE, STATE_NAMES
+from .symbols import ACCELERATIONS, STATE, STATE_NAMES, g
 
 
 @dataclass(frozen=True)
@@ -136,8 +136,6 @@ class Model:
         """
         if self.horizontal_acceleration is None:
             return None
-        from .symbols import ACCELERATIONS, g
-
         on_shell = dict(zip(ACCELERATIONS, self.accelerations))
         return tuple(a.subs(on_shell) / g for a in self.horizontal_acceleration)
 
@@ -195,8 +193,6 @@ class Model:
 
     def with_invariants(self, invariants) -> "Model":
         """A copy with other invariants (used by negative controls and paper sources)."""
-        from dataclasses import replace
-
         return replace(self, invariants=tuple(invariants))
 
 

@@ -34,6 +34,7 @@ outside the body, a domain that lets the contact reach a corner of the profile.
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import pickle
 import re
@@ -46,13 +47,20 @@ import sympy as sp
 
 from .base import Domain, Parameter
 from .build import invariant, rolling_model
+from .catalogue import BODY_PREFIX
 from .common import AXIAL_BOUND, GRAVITY, inertia_parameters
-from .profiles import FIELDS, RELATIONS, InvalidBody, check_domain, check_inertia, contact, vector
+from .profile_curve import R2, R3, CurveError, read_expression, with_contact
+from .profiles import EXPRESSIONS, FIELDS, RELATIONS, InvalidBody, check_domain, check_inertia, contact, vector
 from .symbols import omega_body
 
 #: The body files shipped with the suite (the paper's bodies from their profiles, and new ones).
 DIRECTORY = Path(__file__).resolve().parent / "bodies"
 _NUMBER = re.compile(r"^(?:[0-9eE.+\-*/() ]|pi)*$")
+#: hex digits of the fingerprint in a model name body:NAME@HASH (48 bits: no accidental collision among files)
+HASH_DIGITS = 12
+_KEY = re.compile(rf"[a-z0-9][a-z0-9\-]*@[0-9a-f]{{{HASH_DIGITS}}}")
+#: bodies registered in this process, by NAME@HASH (:func:`register`)
+_REGISTERED: dict = {}
 
 
 @dataclass(frozen=True)
@@ -107,7 +115,12 @@ def body_from_mapping(data: dict, source: str = "the body") -> Body:
     kind = profile["kind"]
     if not isinstance(kind, str):
         raise InvalidBody(f"{source}: profile.kind = {kind!r}; allowed: a string, one of the profile kinds")
-    fields = {k: exact(v, f"profile.{k}") for k, v in profile.items() if k != "kind"}
+    curve = EXPRESSIONS.get(kind, ())  # a curve's r and z: expressions of s through a whitelist (models.profile_curve)
+    try:
+        fields = {k: read_expression(v, f"profile.{k}") if k in curve else exact(v, f"profile.{k}")
+                  for k, v in profile.items() if k != "kind"}
+    except CurveError as err:
+        raise InvalidBody(str(err)) from None
     inertia = data.get("inertia")
     if not isinstance(inertia, dict) or set(inertia) != {"I1", "I3"}:
         raise InvalidBody(f"{source}: an [inertia] table with exactly I1 and I3 is needed")
@@ -141,16 +154,22 @@ def check(body: Body) -> None:
 def default_start(body: Body) -> tuple:
     """(state, words): the file's [start], or theta in the middle of the domain with phidot = 1, psidot = 10."""
     if body.start:
-        return dict(body.start), f"the start in {body.name}.toml's [start]"
+        return dict(body.start), f"the start in the [start] table of body {body.name}"
     c = contact(body.kind, body.values)
     lo, hi = check_domain(c, body.theta_min, body.theta_max)
     middle = sp.nsimplify((lo + hi) / 2)
     return ({"theta": middle, "phidot": sp.Integer(1), "psidot": sp.Integer(10)},
-            f"the default start of a body: theta = {middle} (the middle of its domain), phidot = 1, psidot = 10")
+            f"the default start of body {body.name}: theta = {middle} (the middle of its domain), phidot = 1, psidot = 10")
 
 
 def load(path) -> Body:
-    """The body of the TOML file at ``path`` (or a shipped body's name, e.g. 'rounded-coin')."""
+    """The body of the TOML file at ``path``, or of a name: a shipped body's ('rounded-coin'), or a model name's key
+    'NAME@HASH' (:func:`resolve`: a body file registered in this process or saved in the cache)."""
+    text = str(path)
+    if text.startswith(BODY_PREFIX) and not Path(text).exists():  # a model name body:NAME or body:NAME@HASH
+        return resolve(text[len(BODY_PREFIX):])
+    if _KEY.fullmatch(text) and not Path(text).exists():
+        return resolve(text)
     path = Path(path)
     if not path.suffix and not path.exists():
         path = DIRECTORY / f"{path.name}.toml"
@@ -165,6 +184,95 @@ def load(path) -> Body:
     except tomllib.TOMLDecodeError as err:
         raise InvalidBody(f"body file {str(path)!r} is not TOML ({err})") from None
     return body_from_mapping(data, f"body file {path.name}")
+
+
+# --- model names: body:NAME for a shipped body, body:NAME@HASH for any other file ----------------------------
+
+def model_name(body: Body) -> str:
+    """The model name of ``body``: ``body:NAME`` where it is the shipped body of that name (the same exact data), else
+    ``body:NAME@HASH`` with HASH the first :data:`HASH_DIGITS` hex digits of its :func:`fingerprint`, so that the name
+    can never resolve to a body with other equations (two files that differ only in description or [start] share it:
+    their models are the same)."""
+    if body.name in shipped() and fingerprint(_shipped(body.name)) == fingerprint(body):
+        return BODY_PREFIX + body.name
+    return f"{BODY_PREFIX}{body.name}@{fingerprint(body)[:HASH_DIGITS]}"
+
+
+def register(body: Body) -> str:
+    """Make ``body``'s model name (:func:`model_name`) resolve in this process (``get_model``, the friction engines) and
+    in others on this machine: the body is kept in memory and its text (:func:`to_toml`) saved atomically as
+    ``<cache>/registered/NAME@HASH.toml`` (:func:`cache_directory`), which another process reads back and checks
+    against the hash (a sweep's or a report's workers).  A cache that cannot be written is skipped: there the name is
+    refused loudly (:func:`resolve`).  Returns the model name."""
+    name = model_name(body)
+    key = name[len(BODY_PREFIX):]
+    if "@" in key and key not in _REGISTERED:
+        _REGISTERED[key] = body
+        path = _registered_path(key)
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_suffix(f".{os.getpid()}.tmp")
+            tmp.write_text(to_toml(body))
+            os.replace(tmp, path)
+        except OSError:
+            pass
+    return name
+
+
+def resolve(key: str) -> Body:
+    """The body of a model name's key: a shipped body's name, or 'NAME@HASH' registered (:func:`register`) in this
+    process or saved in the cache by another; anything else is refused (:class:`InvalidBody`) naming what is allowed."""
+    if "@" not in key:
+        if key in shipped():
+            return _shipped(key)
+        raise InvalidBody(f"unknown body {BODY_PREFIX}{key}; shipped bodies: {', '.join(shipped())} "
+                          "(a body file of your own: --body FILE.toml)")
+    if not _KEY.fullmatch(key):
+        raise InvalidBody(f"body name {BODY_PREFIX}{key!r}: allowed NAME or NAME@HASH ({HASH_DIGITS} hex digits)")
+    if key in _REGISTERED:
+        return _REGISTERED[key]
+    path = _registered_path(key)
+    try:
+        text = path.read_text()
+    except (OSError, UnicodeDecodeError):
+        raise InvalidBody(f"{BODY_PREFIX}{key}: no body file with this name and fingerprint was loaded in this process "
+                          f"or saved in {path.parent}; load its file first (--body FILE.toml, models.load_body(path))") from None
+    try:
+        body = body_from_mapping(tomllib.loads(text), f"registered body {path.name}")
+    except (tomllib.TOMLDecodeError, InvalidBody) as err:
+        raise InvalidBody(f"{BODY_PREFIX}{key}: the saved body {path} cannot be read ({err}); load its file again") from None
+    if model_name(body) != BODY_PREFIX + key:
+        raise InvalidBody(f"{BODY_PREFIX}{key}: the saved body {path} has the fingerprint "
+                          f"{fingerprint(body)[:HASH_DIGITS]}, not the name's; load its file again")
+    _REGISTERED[key] = body
+    return body
+
+
+def to_toml(body: Body) -> str:
+    """The body as a body file's text, every number exact (read back by :func:`body_from_mapping` to the same
+    :class:`Body`): what a run's file records and what :func:`register` saves."""
+    def quoted(text) -> str:
+        return json.dumps(str(text), ensure_ascii=False)  # a JSON string is a TOML basic string (escapes alike)
+
+    lines = [f"name = {quoted(body.name)}", f"description = {quoted(body.description)}", "[profile]",
+             f"kind = {quoted(body.kind)}"]
+    lines += [f"{k} = {quoted(sp.sstr(v))}" for k, v in body.profile]
+    lines += ["[inertia]", f"I1 = {quoted(sp.sstr(body.I1))}", f"I3 = {quoted(sp.sstr(body.I3))}"]
+    domain = [(k, v) for k, v in (("theta_min", body.theta_min), ("theta_max", body.theta_max)) if v is not None]
+    if domain:
+        lines += ["[domain]"] + [f"{k} = {quoted(sp.sstr(v))}" for k, v in domain]
+    if body.start:
+        lines += ["[start]"] + [f"{k} = {quoted(sp.sstr(v))}" for k, v in body.start]
+    return "\n".join(lines) + "\n"
+
+
+def _registered_path(key: str) -> Path:
+    return cache_directory() / "registered" / f"{key}.toml"
+
+
+@lru_cache(maxsize=None)
+def _shipped(name: str) -> Body:
+    return load(DIRECTORY / f"{name}.toml")
 
 
 def shipped() -> list:
@@ -190,12 +298,13 @@ def body_of_revolution(kind: str, I1, I3, *, name: str = "body", description: st
 
 @lru_cache(maxsize=None)
 def model_of(body: Body):
-    """The rolling model of ``body``: derived once per body and kept on disk (:func:`cached_derivation`), so a
-    second process pays nothing for sympy; in memory once per process."""
+    """The rolling model of ``body``, named :func:`model_name` (registered: the name resolves, :func:`register`):
+    derived once per body and kept on disk (:func:`cached_derivation`), so a second process pays nothing for sympy;
+    in memory once per process."""
     model = cached_derivation(body)
     fixed, same = _fixed_and_shared(body)
     relations = tuple((text, _with(rule, fixed, same)) for text, rule in RELATIONS.get(body.kind, ()))
-    return replace(model, relations=(AXIAL_BOUND,) + relations)
+    return replace(model, name=register(body), relations=(AXIAL_BOUND,) + relations)
 
 
 def cache_directory() -> Path:
@@ -231,7 +340,7 @@ def cached_derivation(body: Body):
 def _sources_hash() -> str:
     here = Path(__file__).resolve().parent
     h = hashlib.sha256()
-    for name in ("base", "bodies", "build", "common", "profiles", "rolling", "symbols"):
+    for name in ("base", "bodies", "build", "common", "profile_curve", "profiles", "rolling", "symbols"):
         h.update((here / f"{name}.py").read_bytes())
     return h.hexdigest()
 
@@ -253,6 +362,11 @@ def _derive(body: Body):
     shape, symbols = _shape_parameters(body)
     r2, r3 = vector(body.kind, symbols)
     extra = _sphere_integrals(I1, I3, r2, r3) if body.kind == "sphere" else ()
+    if body.kind == "curve":  # derived with r2, r3 as functions of theta, then put in (models.profile_curve)
+        generic = rolling_model(f"body:{body.name}", body.description or f"curve body '{body.name}'",
+                                (p1, p3, GRAVITY), I1, I3, R2, R3, Domain(lo, hi, below, above), unit="M L^2",
+                                theta_ref=(lo + hi) / 2)
+        return with_contact(generic, r2, r3)
     return rolling_model(f"body:{body.name}", body.description or f"{body.kind} body '{body.name}'",
                          (p1, p3, *shape, GRAVITY), I1, I3, r2, r3, Domain(lo, hi, below, above), unit="M L^2",
                          extra_invariants=extra, theta_ref=(lo + hi) / 2)
@@ -261,9 +375,7 @@ def _derive(body: Body):
 def contact_vector(body: Body) -> tuple:
     """(I1, I3, r2, r3) of ``body`` with the symbols of its model (:func:`model_of`): what the sliding phase of
     a Coulomb body (:func:`models.coulomb.body`) is derived from."""
-    from .common import inertia_parameters as _ip
-
-    p1, p3 = _ip(body.I1, body.I3, "M L^2")
+    p1, p3 = inertia_parameters(body.I1, body.I3, "M L^2")
     _, symbols = _shape_parameters(body)
     return (p1.symbol, p3.symbol, *vector(body.kind, symbols))
 
@@ -284,6 +396,8 @@ def _shape_parameters(body: Body) -> tuple:
     rim rounded all the way (tube_radius = half_thickness) keeps one symbol for both: it is what makes the body
     pass theta = pi/2 smoothly, so --param cannot split them."""
     params, symbols = [], {}
+    if body.kind == "curve":  # a curve's numbers stay in its expressions: its checks hold for these values only
+        return (), dict(body.profile)
     for field, value in body.profile:
         if body.kind == "torus-rim" and field == "tube_radius" and value == body.values["half_thickness"]:
             symbols[field] = symbols["half_thickness"]
@@ -319,5 +433,6 @@ def fingerprint(body: Body) -> str:
     return hashlib.sha256(text.encode()).hexdigest()
 
 
-__all__ = ["Body", "DIRECTORY", "InvalidBody", "body_from_mapping", "body_of_revolution", "check", "default_start", "exact",
-           "fingerprint", "load", "model_of", "shipped"]
+__all__ = ["Body", "DIRECTORY", "HASH_DIGITS", "InvalidBody", "body_from_mapping", "body_of_revolution", "check",
+           "default_start", "exact", "fingerprint", "load", "model_name", "model_of", "register", "resolve", "shipped",
+           "to_toml"]

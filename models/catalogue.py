@@ -174,7 +174,9 @@ def entry(name: str) -> ModelEntry:
     if name in COULOMB_NAMES:
         name = name.split("+")[0]
     if name.startswith(BODY_PREFIX):  # a body file's model (models.bodies): its units are the file's scale L
-        return ModelEntry(name, f"the body of {name[len(BODY_PREFIX):]}.toml", ("derived",), parameters=(),
+        body = name[len(BODY_PREFIX):].split("+")[0]  # body:NAME@HASH+coulomb: the rolling model's entry
+        name = BODY_PREFIX + body
+        return ModelEntry(name, f"the body {body.split('@')[0]} (a body file)", ("derived",), parameters=(),
                           domain=(), invariants=(), inertia_unit="M L^2", normal_force=True, friction_required=True)
     return CATALOGUE[name]
 

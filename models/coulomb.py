@@ -44,8 +44,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import lru_cache
 
+import mpmath
 import sympy as sp
 
+from . import disk, get_model, ring
 from .base import Parameter
 from .rolling import _simplify, newton_euler
 from .symbols import (
@@ -177,8 +179,6 @@ def critical_friction(name: str, params: dict | None = None, samples: int = 4096
     min over theta of (I1 + H'^2) / |H H'|, read off :func:`painleve_margin` as 1 / max |dP/dmu| over a
     grid of ``samples`` angles in the domain and refined by golden-section search (mpmath, 30 digits);
     infinite for a body whose margin does not depend on mu.  Below it a sliding phase cannot jam."""
-    import mpmath
-
     rolling, sliding, parameters = body(name)
     values = {p.symbol: sp.sympify((params or {}).get(p.name, p.default)) for p in parameters if p.name != "mu"}
     slope = sp.diff(sliding.painleve_margin, mu).subs(values)  # mu sin(alpha - phi) H H' / (I1 + H'^2) / mu
@@ -213,11 +213,9 @@ def rolling_name(name: str) -> str:
 def body(name: str):
     """(rolling model, sliding phase, parameters incl. ``mu`` last) of ``disk+coulomb``, ``ring+coulomb`` or a
     shipped body file's ``body:NAME+coulomb`` (:mod:`models.bodies`: the same derivation with its contact vector)."""
-    from . import disk, get_model, ring
-
     rolling = get_model(rolling_name(name))
     if name.startswith("body:"):
-        from .bodies import contact_vector, load
+        from .bodies import contact_vector, load  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
 
         I1, I3, r2, r3 = contact_vector(load(rolling.name[len("body:"):]))
         return rolling, derive_sliding(I1, I3, r2, r3), rolling.parameters + (FRICTION,)

@@ -29,7 +29,11 @@ smooth piece to another, is an end of it):
   touches at pi/2 (a jump: ``rim_switch``); tube_radius -> 0 is ``two-rims``;
 * ``ellipse`` (an ellipsoid of revolution): semi-axes a (equatorial) and c (polar), centred at
   zeta = centre_height: r2 = -a^2 sin(theta)/D, r3 = centre_height - c^2 cos(theta)/D,
-  D = sqrt(a^2 sin^2(theta) + c^2 cos^2(theta)), theta in (0, pi).
+  D = sqrt(a^2 sin^2(theta) + c^2 cos^2(theta)), theta in (0, pi);
+* ``curve`` (any smooth convex meridian): r(s), z(s) as exact expressions of s on (s_min, s_max), bottom to top;
+  the contact's s(theta) solved by sympy from r'(s) sin(theta) = z'(s) cos(theta), the branch that is the
+  lowest point picked, convexity and C inside proved in ball arithmetic, the domain the normal's angles at
+  the ends (:mod:`models.profile_curve`; a curve sympy cannot solve in closed form is refused).
 
 Each formula is checked in the tests against the minimisation itself (the first-order condition
 d height/ds = 0 on the profile and a numerical minimum over the profile's points).
@@ -40,9 +44,10 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from .profile_curve import CurveError, contact_of_curve
 from .symbols import theta
 
-KINDS = ("point-rim", "two-rims", "sphere", "torus-rim", "ellipse")
+KINDS = ("point-rim", "two-rims", "sphere", "torus-rim", "ellipse", "curve")
 #: The numbers each kind reads (exact), beyond the inertia.
 FIELDS = {
     "point-rim": ("radius",),
@@ -50,7 +55,10 @@ FIELDS = {
     "sphere": ("radius", "centre_height"),
     "torus-rim": ("radius", "half_thickness", "tube_radius"),
     "ellipse": ("a", "c", "centre_height"),
+    "curve": ("r", "z", "s_min", "s_max"),
 }
+#: The fields that are expressions of s (read by :func:`models.profile_curve.read_expression`), not numbers.
+EXPRESSIONS = {"curve": ("r", "z")}
 
 
 class InvalidBody(ValueError):
@@ -76,7 +84,7 @@ class Contact:
 def contact(kind: str, values: dict) -> Contact:
     """The contact of profile ``kind`` with exact ``values`` (sympy Rationals), checked; :class:`InvalidBody` otherwise."""
     if kind not in KINDS:
-        raise InvalidBody(f"profile kind {kind!r}; allowed: {', '.join(KINDS)} ('curve' is not built yet)")
+        raise InvalidBody(f"profile kind {kind!r}; allowed: {', '.join(KINDS)}")
     missing = [f for f in FIELDS[kind] if f not in values]
     if missing:
         raise InvalidBody(f"profile kind {kind!r} needs {', '.join(missing)}")
@@ -85,6 +93,12 @@ def contact(kind: str, values: dict) -> Contact:
         raise InvalidBody(f"profile kind {kind!r} takes {', '.join(FIELDS[kind])}; not {', '.join(extra)}")
     v = values
     half = sp.pi / 2
+    if kind == "curve":
+        try:
+            r2, r3, lo, hi, below, above = contact_of_curve(v["r"], v["z"], v["s_min"], v["s_max"])
+        except CurveError as err:
+            raise InvalidBody(str(err)) from None
+        return Contact(r2, r3, lo, hi, below, above)
     r2, r3 = vector(kind, v)
     if kind == "point-rim":
         _positive(v, "radius")
@@ -129,6 +143,8 @@ def vector(kind: str, v: dict) -> tuple:
     if kind == "torus-rim":
         rho, h, R = v["tube_radius"], v["half_thickness"], v["radius"]
         return -(R - rho) - rho * sp.sin(theta), -(h - rho) - rho * sp.cos(theta)
+    if kind == "curve":  # checked and solved once per curve (cached): the checks cannot fail here after contact()
+        return contact_of_curve(v["r"], v["z"], v["s_min"], v["s_max"])[:2]
     d = sp.sqrt(v["a"] ** 2 * sp.sin(theta) ** 2 + v["c"] ** 2 * sp.cos(theta) ** 2)
     return -v["a"] ** 2 * sp.sin(theta) / d, v["centre_height"] - v["c"] ** 2 * sp.cos(theta) / d
 
@@ -171,4 +187,4 @@ def check_domain(c: Contact, theta_min, theta_max) -> tuple:
     return lo, hi
 
 
-__all__ = ["Contact", "FIELDS", "InvalidBody", "KINDS", "RELATIONS", "check_domain", "check_inertia", "contact", "vector"]
+__all__ = ["Contact", "EXPRESSIONS", "FIELDS", "InvalidBody", "KINDS", "RELATIONS", "check_domain", "check_inertia", "contact", "vector"]

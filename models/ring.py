@@ -27,6 +27,7 @@ threshold from 18.67497 (annular) to 18.67560 (printed) and cot^-1 h from 1.1609
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import lru_cache
 from types import MappingProxyType
 from typing import Mapping, Optional
@@ -154,8 +155,6 @@ def model(equations: str = "derived"):
         "ring", "thick ring or coin rolling on one rim", PARAMETERS, I1, I3, R2, R3, DOMAIN,
         unit="m R^2", theta_ref=THETA_REF, chaplygin_closed_form=chaplygin_closed_form,
     )
-    from dataclasses import replace
-
     derived = replace(derived, relations=(AXIAL_BOUND,))
     if equations == "derived":
         return derived

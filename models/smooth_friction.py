@@ -50,6 +50,7 @@ from functools import lru_cache
 
 import sympy as sp
 
+from . import get_model
 from .base import Parameter
 from .coulomb import FRICTION, contact_kinematics, mu
 from .rolling import _simplify, newton_euler
@@ -153,8 +154,7 @@ def derive_smooth(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> SmoothS
 def body(name: str):
     """(rolling model, smooth-law equations, parameters with ``mu`` and ``eps`` last) of a shipped body file
     ``body:NAME`` or ``NAME`` (:mod:`models.bodies`: the same contact vector as its rolling model)."""
-    from . import get_model
-    from .bodies import contact_vector, load
+    from .bodies import contact_vector, load  # lazy: models.bodies (0.12 s) only for a body
 
     name = name if name.startswith("body:") else f"body:{name}"
     rolling = get_model(name)
@@ -164,7 +164,7 @@ def body(name: str):
 
 def body_model(body_object):
     """(rolling model, smooth-law equations, parameters) of a :class:`models.bodies.Body` (a file not shipped)."""
-    from .bodies import contact_vector, model_of
+    from .bodies import contact_vector, model_of  # lazy: models.bodies (0.12 s) only for a body
 
     rolling = model_of(body_object)
     I1, I3, r2, r3 = contact_vector(body_object)

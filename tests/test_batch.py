@@ -6,6 +6,7 @@ import math
 
 import heyoka as hy
 import numpy as np
+import pytest
 
 from verify.engine import batch
 
@@ -83,23 +84,48 @@ def test_a_lane_alone_gets_the_bits_it_had_in_a_mixed_batch():
         assert batch.lane_failure(one, 0, batch.Lanes(1, 2, 3), []) is None
 
 
-def test_per_run_evaluation_has_the_bits_of_one_call_per_run():
+def test_per_lane_evaluation_has_the_bits_of_one_call_per_run():
     fn = batch.ScalarTwin.of([hy.cos(X) * V + hy.sin(X) ** 2, hy.sqrt(X * X + V * V) * hy.par[0]], [X, V])
     rng = np.random.default_rng(3)
     lengths = np.array([1, 2, 3, 4, 5, 7, 9, 13, 401, 402, 403])
-    points = rng.uniform(0.1, 3.0, (2, lengths.sum()))
-    pars = np.repeat(rng.uniform(1, 2, len(lengths))[None, :], lengths, axis=1)
-    got = batch.per_run(fn, points, pars, lengths)
-    cuts = np.cumsum(lengths)[:-1]
-    one_by_one = np.concatenate([fn.simd(np.ascontiguousarray(p), pars=np.ascontiguousarray(q))
-                                 for p, q in zip(np.split(points, cuts, axis=1), np.split(pars, cuts, axis=1))], axis=1)
-    assert got.tobytes() == one_by_one.tobytes()
+    points = rng.uniform(0.1, 3.0, (2, len(lengths), 403))  # lane l's run: its first lengths[l] samples
+    pars = rng.uniform(1, 2, (1, len(lengths)))
+    got = batch.per_lane(fn, points, pars, lengths)
+    for lane, n in enumerate(lengths):
+        one = fn.simd(np.ascontiguousarray(points[:, lane, :n]), pars=np.repeat(pars[:, lane:lane + 1], n, axis=1))
+        assert got[:, lane, :n].tobytes() == one.tobytes()
     # the lengths leave a scalar tail at any SIMD width (4 or 8): 401, 402, 403 are not multiples of either
     assert any(n % fn.simd.batch_size for n in lengths) or fn.simd.batch_size == 1
     # negative control, the same on any CPU: one input of one run moved by one ulp changes the bytes
     moved = points.copy()
-    moved[0, lengths[:8].sum()] = np.nextafter(moved[0, lengths[:8].sum()], np.inf)
-    assert batch.per_run(fn, moved, pars, lengths).tobytes() != got.tobytes()
+    moved[0, 8, 5] = np.nextafter(moved[0, 8, 5], np.inf)
+    assert batch.per_lane(fn, moved, pars, lengths)[:, 8, :401].tobytes() != got[:, 8, :401].tobytes()
+
+
+def test_a_lane_of_nan_or_huge_values_changes_no_other_lanes_bits():
+    """heyoka's vector sine and cosine reduce a whole SIMD group's arguments another way when one of them is
+    NaN, infinite or huge; per_lane keeps each lane in groups of its own, so a failed lane's samples (NaN)
+    or a lane far out (1e16) leave every other lane with the bits of a call on it alone.  Negative control:
+    the same samples flattened across lanes into one call do change some of them."""
+    fn = batch.ScalarTwin.of([hy.sin(X) * V + hy.cos(X)], [X, V])
+    width = int(fn.simd.batch_size)
+    if width == 1:
+        pytest.skip("scalar compiled functions: no SIMD groups to share")
+    rng = np.random.default_rng(5)
+    n_lanes, n = 400, 101  # 101 samples: not whole groups at width 4 or 8
+    points = rng.uniform(-3.0, 3.0, (2, n_lanes, n))
+    points[0, ::2, 60:] = np.nan
+    points[0, 1::4, 90:] = 1e16
+    lengths = np.full(n_lanes, n)
+    lengths[::2] = 60
+    lengths[1::4] = 90
+    got = batch.per_lane(fn, points, None, lengths)
+    for lane in range(1, n_lanes, 2):
+        m = lengths[lane]
+        assert got[:, lane, :m].tobytes() == fn.simd(np.ascontiguousarray(points[:, lane, :m])).tobytes()
+    flat = fn.simd(np.ascontiguousarray(points.reshape(2, -1))).reshape(1, n_lanes, n)
+    assert any(flat[:, lane, :lengths[lane] // width * width].tobytes()
+               != got[:, lane, :lengths[lane] // width * width].tobytes() for lane in range(3, n_lanes, 4))
 
 
 def test_step_cap_is_one_radian_of_the_fastest_rate():

@@ -79,7 +79,7 @@ def test_solve_against_bare_names_every_ratio_with_its_baseline_and_target():
     assert "target" not in pairs[("solve", "bare propagate_until")]
     text = "\n".join(_md_solve({"solve_vs_bare": cases}))
     rows = [ln for ln in text.splitlines() if ln.startswith("| solve")]
-    assert len(rows) == 5 and sum("bare propagate_until" in ln for ln in rows) == 4
+    assert len(rows) == 6 and sum("bare propagate_until" in ln for ln in rows) == 5
     assert sum("<= 1.25: " in ln for ln in rows) == 1 and sum("<= 1.5: " in ln for ln in rows) == 1
     # the issue's outside baseline (Eq. 18 by hand, no events) at t_end <= 1 s, and the decomposition sizes
     hand = pairs[("solve", "bare hand-written Eq. 18, no events")]
@@ -87,6 +87,9 @@ def test_solve_against_bare_names_every_ratio_with_its_baseline_and_target():
     terms = case["decomposition_terms"]
     assert terms["hand_written_eq18"] < terms["system"] < terms["system_and_events"]
     assert "Decomposition terms: system " in text
+    # the angle-reducing baseline: steps comparable with solve's, its per-step ratio and the overhead named
+    assert case["steps_bare_events_reduced"] > 0 and case["per_step_ratio_vs_bare_events_reduced"] > 0
+    assert "per-step ratio against it" in text and "per-call overhead" in text
 
 
 def test_a_workload_that_failed_is_shown_as_failed_not_left_out():
@@ -120,6 +123,7 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     write_benchmarks(results, tmp_path)
     data = json.loads((tmp_path / "benchmarks.json").read_text())
     assert [c.get("error") for c in data["ensembles_vs_bare"]] == [None] * 3  # every workload ran
+    assert data["call_paths"]["same_bytes"]  # every path integrates the same bits
     assert [c["precision"] for c in data["solve_vs_bare"]] == ["double", "double", "quad"]
     assert data["energy"]["starts"] == len(data["energy"]["exponent_per_start"]["suite"])
     methods = {a["method"] for a in data["work_precision"]["attempts"]}
@@ -136,8 +140,8 @@ def test_quick_benchmark_runs_and_writes_its_files(tmp_path):
     assert md.startswith("# Benchmarks")
     assert [ln for ln in md.splitlines() if ln.startswith("## ")] == [
         "## Targets", "## solve against bare heyoka", "## The sweep engine and the stability map against a bare ensemble",
-        "## Long-run energy error", "## heyoka's own modes on the benchmark grid", "## Work against precision",
-        "## Compile cost"]
+        "## Call paths", "## Long-run energy error", "## heyoka's own modes on the benchmark grid", "## Work against precision",
+        "## Compile cost", "## Body files", "## The command line"]
     # the layout does not depend on the numbers
     assert _skeleton(render_markdown(_scaled(data, 1.37))) == _skeleton(md)
     assert (tmp_path / "figures" / "bench-work-precision.png").read_bytes()[:4] == b"\x89PNG"
@@ -159,6 +163,28 @@ def test_the_compile_cost_script_runs_in_a_fresh_process():
     assert res.returncode == 0, res.stderr[-2000:]
 
 
+def test_the_body_derivation_script_runs_in_a_fresh_process_and_leaves_its_cache(tmp_path):
+    """The body files' derivation script (a string run by ``python -c``: nothing else checks its names) runs
+    twice in fresh processes, and the first leaves the derivation in the given cache folder for the second
+    (what the benchmark's 'warm cache' column times; times are the benchmark's, not a test's)."""
+    import json
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from verify.bench.bodies import _DERIVE_SCRIPT
+
+    root = Path(__file__).resolve().parents[1]
+    env = dict(os.environ, HEYOKA_CACHE_DIR=str(tmp_path), PYTHONPATH=str(root))
+    for _ in range(2):
+        res = subprocess.run([sys.executable, "-c", _DERIVE_SCRIPT, json.dumps(["tippe-top"])], cwd=root, env=env,
+                             capture_output=True, text=True, timeout=300)
+        assert res.returncode == 0, res.stderr[-2000:]
+        assert json.loads(res.stdout.strip().splitlines()[-1])["tippe-top"] > 0
+    assert any((tmp_path / "bodies").iterdir())  # the derivation was cached in the given folder
+
+
 def test_the_report_names_the_latest_benchmark_run_and_does_not_run_one():
     import inspect
 
@@ -172,3 +198,23 @@ def test_the_report_names_the_latest_benchmark_run_and_does_not_run_one():
     text = "\n".join(benchmarks_section(run))
     assert "2026-11-24 16:00 UTC" in text and "0123456789ab" in text and "AMD EPYC" in text
     assert "No benchmark run" not in text
+
+
+def test_ensemble_rows_name_the_same_guard_yardstick_and_each_guards_cost():
+    """The batch rows compare with the bare ensemble that has the suite's events and step cap (target), show
+    the ratio to the plain bare ensemble beside it, and list what each guard costs."""
+    times = {"suite": [1.0, 1.1], "bare, same events and step cap": [0.95, 1.0], "bare, no events, no step cap": [0.7, 0.72],
+             "bare, same events and step cap, output grid": [1.25, 1.3]}
+    case = {"workload": "w", "trajectories": 100, "samples": 11, "batch_size": 4, "threads": 2, "step_cap": 0.03,
+            "bare_lanes_stopped": {"bare, same events and step cap": 0}, "outcomes": {"ok": 100},
+            "ratio": ratio_record(times, "suite", "bare, same events and step cap", TARGETS["ensemble_throughput"],
+                                  inverse=True),
+            "ratio_no_guards": ratio_record(times, "suite", "bare, no events, no step cap", inverse=True),
+            "ratio_same_output": ratio_record(times, "suite", "bare, same events and step cap, output grid",
+                                              inverse=True),
+            "guards": [{"variant": "bare + step cap only", "throughput_vs_plain": 0.8}]}
+    assert TARGETS["ensemble_throughput"] == (">=", 0.9)
+    text = "\n".join(_md_ensembles({"ensembles_vs_bare": [case]}))
+    (row,) = [ln for ln in text.splitlines() if ln.startswith("| w | 100")]
+    assert ">= 0.9: met" in row and "| 0.7 | 1.25 |" in row  # 0.95/1.0 met; 0.7/1.0 and 1.25/1.0 beside it
+    assert "| w | bare + step cap only | 0.8 |" in text

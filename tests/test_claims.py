@@ -81,7 +81,7 @@ def test_every_equation_and_caption_has_a_claim():
 
 def test_a_misprinted_equation_is_caught():
     """Negative control: the Eq. 12 check run on a copy with the gravity term's sign flipped."""
-    from verify.claims import disk
+    from verify.claims import disk_equations as disk
     from verify.claims.vectors import E1, c
 
     from models.symbols import g
@@ -93,7 +93,7 @@ def test_a_misprinted_equation_is_caught():
 
 def test_a_misprinted_number_is_caught():
     """Negative control: the Fig. 6 check with psidot misprinted by one unit in the last digit."""
-    from verify.claims import disk
+    from verify.claims import disk_spindown as disk
 
     assert disk._fig6_check("cm-at-rest", ("-626.104", "626.073"))().verdict == CONFIRMED
     assert disk._fig6_check("cm-at-rest", ("-626.104", "626.074"))().verdict == ERRATUM

@@ -18,6 +18,7 @@ import pytest
 
 from verify.cli import arguments, output, progress
 from verify.engine import single
+from verify.studies.orbits import senses
 from verify.cli import main
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -335,14 +336,15 @@ def test_sweep_yes_reaches_run_sweep(capsys, monkeypatch, tmp_path):
 
     seen = {}
 
-    def run_sweep(spec, dask=None, threads=None, progress=True, store_path=None, yes=False):
-        seen.update(yes=yes)
+    def run_sweep(spec, dask=None, threads=None, progress=True, store_path=None, yes=False, senses=None):
+        seen.update(yes=yes, senses=senses)
         raise sweep.SpecError("stop here")
 
     monkeypatch.setattr(sweep, "run_sweep", run_sweep)
     spec = os.path.join(ROOT, "verify", "sweep", "specs", "disk-diameter-spin.toml")
     code, _, err = run(capsys, "sweep", spec, "--store", str(tmp_path / "s.sqlite"), "--quiet", "--yes")
     assert code == 2 and one_error_line(err) == "error: stop here" and seen.get("yes") is True
+    assert seen.get("senses") is senses  # the command passes the orbit study's reading (the sweep imports no study)
 
 
 TINY_SPEC = """

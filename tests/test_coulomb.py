@@ -14,7 +14,7 @@ import sympy as sp
 
 from models import get_model
 from models.symbols import STATE
-from verify.engine import hybrid, hybrid_guards, slip_onset
+from verify.engine import hybrid, hybrid_guards, hybrid_switches, hybrid_system, slip_onset
 from verify.engine.trajectory import IntegrationError
 from verify.studies.coulomb_examples import perturbed_circle, steady_circle
 from verify.engine.single import solve
@@ -139,17 +139,17 @@ def test_a_wrong_stick_map_fails_the_energy_balance(monkeypatch):
     (slip not yet zero, a CM velocity that is not the no-slip one) must break E + W.  Only the first stick
     is handed over wrongly: the wrong state rolls until it slips again (the slips onset), and a wrong map at
     every stick would go round that cycle until the steps collapse."""
-    right = hybrid._Run._after_stick
+    right = hybrid_switches.after_stick
     wrong_ones = []
 
-    def early(self, t, y8):
+    def early(run, t, y8):
         if wrong_ones:
-            return right(self, t, y8)
+            return right(run, t, y8)
         wrong_ones.append(t)
-        before = [i for i, k in enumerate(self.index) if k == len(self.phases) - 1][-2]
-        return right(self, t, self.prec.array(list(self.y[before])))
+        before = [i for i, k in enumerate(run.index) if k == len(run.phases) - 1][-2]
+        return right(run, t, run.prec.array(list(run.y[before])))
 
-    monkeypatch.setattr(hybrid._Run, "_after_stick", early)
+    monkeypatch.setattr(hybrid_switches, "after_stick", early)
     with pytest.raises(IntegrationError) as err:  # the run's own guard stops it: never handed out
         _tilted("double")
     assert err.value.outcome == "failed:energy_balance", err.value
@@ -301,21 +301,22 @@ def _lift_guards(monkeypatch):
     """The run's switch and balance guards off (verify.engine.hybrid_guards), to measure what they stop."""
     monkeypatch.setattr(hybrid_guards, "check_switch", lambda *args: None)
     monkeypatch.setattr(hybrid_guards, "check_balance", lambda *args: None)
-    monkeypatch.setattr(hybrid._Run, "_check_sliding_start", lambda *args: None)
+    monkeypatch.setattr(hybrid_guards, "check_sliding_start", lambda *args: None)
 
 
 def test_negative_control_an_onset_in_the_wrong_direction_is_not_that_limit(monkeypatch):
     """An onset turned by 0.5 rad from the right direction: its Taylor start is off its own path, which the
     onset's switch guard sees (E + W at the start against the onset: measured 1.2e-3 against a bound of
     8.6e-10), and, with that guard lifted, the run is far from the limit of launches (measured: 7.9e7 delta)."""
-    right = hybrid.onset_directions
-    monkeypatch.setattr(hybrid, "onset_directions", lambda c, y, p: [(a + 0.5, lam) for a, lam in right(c, y, p)])
+    right = hybrid_switches.onset_directions
+    monkeypatch.setattr(hybrid_switches, "onset_directions",
+                        lambda c, y, p: [(a + 0.5, lam) for a, lam in right(c, y, p)])
     with pytest.raises(IntegrationError) as err:
         _below_circle()
     assert err.value.outcome == "failed:switch_constraint" and "onset of slip" in str(err.value)
     _lift_guards(monkeypatch)
     wrong = _below_circle()
-    monkeypatch.setattr(hybrid, "onset_directions", right)
+    monkeypatch.setattr(hybrid_switches, "onset_directions", right)
     gap = _final_gap(_nearby_launch("1e-7", 0.5), wrong)
     assert gap / 1e-7 > 1e3  # measured: 7.9e7
     assert wrong.energy_plus_work_drift_in_eps > 64  # measured: 6e5 (the start is off its own path)
@@ -498,8 +499,8 @@ def test_a_sliding_start_outside_the_domain_is_bad_input_and_a_reached_one_is_a_
     record = json.loads(out)
     assert code == 0 and record["outcome"] == "event:lies_flat", (record["outcome"], err)
     assert 0 <= float(record["state"]["theta"]) <= 1e-12
-    right = hybrid._domain_end
-    monkeypatch.setattr(hybrid, "_domain_end", lambda end, prec: prec.number("0.3") if end == 0 else right(end, prec))
+    right = hybrid_system.domain_end
+    monkeypatch.setattr(hybrid_system, "domain_end", lambda end, prec: prec.number("0.3") if end == 0 else right(end, prec))
     code = main(["trajectory", "disk+coulomb", "--state", "theta=1.2", "--state", "psidot=10", "--friction", "0.5",
                  "--t-end", "0.3", "--format", "json"])
     out, err = capsys.readouterr()

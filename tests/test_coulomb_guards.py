@@ -14,7 +14,7 @@ import pytest
 import sympy as sp
 
 from models import coulomb, disk, ring
-from verify.engine import hybrid, hybrid_guards
+from verify.engine import hybrid, hybrid_guards, hybrid_run
 from verify.engine.single import solve
 from verify.engine.failures import SLIP_SLACK_EPS
 from verify.engine.trajectory import IntegrationError
@@ -230,7 +230,7 @@ def test_a_run_whose_end_falls_inside_a_slip_onsets_series_ends_there(monkeypatc
     conditioning = _conditioning(*case, double)
     assert conditioning is not None and _gap(double, quad) <= agreement_bound(double, conditioning)
     # negative control: without the onset's outputs the run stops short of t_end, and says so
-    monkeypatch.setattr(hybrid._Run, "_outputs_before", lambda self, t, t0, state_at: [])
+    monkeypatch.setattr(hybrid_run.Run, "outputs_before", lambda self, t, t0, state_at: [])
     with pytest.raises(IntegrationError) as err:
         hybrid.solve(case[0], "0.3", case[1], friction=case[3], velocity=case[2], n_eval=31)
     assert err.value.outcome == "failed:short_run"

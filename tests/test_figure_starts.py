@@ -26,7 +26,7 @@ def _formulas() -> dict:
     import mpmath
 
     from models.steady import steady_state
-    from verify.claims.disk import _fig6_rates
+    from verify.claims.disk_spindown import fig6_rates
     from verify.claims.simulations import disk, hurricane, ring
     from verify.claims.simulations.runs import G, K, RING_PRINTED, SQRT_G
 
@@ -49,7 +49,7 @@ def _formulas() -> dict:
     for side, f in (("lhs", 1.1), ("rhs", 0.9)):
         add(f"fig5-{side}", "disk", {"theta": math.pi / 2 + 0.01, "phidot": f * crit41, "psidot": member(f * crit41)}, 10)
     for side, family in (("lhs", "no-vertical-spin"), ("rhs", "cm-at-rest")):
-        phr, psr, _ = _fig6_rates("1/100", family)
+        phr, psr, _ = fig6_rates("1/100", family)
         add(f"fig6-{side}", "disk", {"theta": "0.01", "phidot": float(mpmath.nstr(phr, 30)),
                                      "psidot": float(mpmath.nstr(psr, 30))}, 0.5)
     phd9, psd9 = ring._ring_cm_rest_rates(0.1, +1)

@@ -21,7 +21,7 @@ import pytest
 
 from verify.precision import parse_precision
 from verify.report.friction import render_markdown
-from verify.studies import friction
+from verify.studies import friction, spindown_slip, steady_friction
 from verify.studies.summary import RING_PARAMS
 
 RING = dict(RING_PARAMS)
@@ -30,7 +30,7 @@ RESULTS = Path(__file__).resolve().parent.parent / "reports" / "results.json"
 
 def _family(model, family, theta, params):
     values = friction._values(model, params)
-    with mpmath.workdps(friction.DPS):
+    with mpmath.workdps(steady_friction.DPS):
         th = mpmath.mpf(theta)
         phidot, psidot = friction.family_state(model, family, th, values)
     return th, phidot, psidot, values
@@ -45,7 +45,7 @@ CIRCLING = [("disk", "zero-vertical-spin", "0.5", {}), ("disk", "zero-vertical-s
 def test_cfunc_and_closed_form_agree_on_the_spindown_families(model, family, theta, params):
     th, phidot, psidot, values = _family(model, family, theta, params)
     row = friction.steady_point(model, family, th, phidot, psidot, values, theta)
-    for precision in friction.CFUNC_PRECISIONS:
+    for precision in steady_friction.CFUNC_PRECISIONS:
         assert row["cfunc"][precision]["agrees"], (precision, row["cfunc"][precision])
         assert abs(float(row["cfunc"][precision]["normal"]) - 1) < 1e-10  # steady: N = M g
     if family == "zero-vertical-spin":
@@ -58,16 +58,16 @@ def test_cfunc_and_closed_form_agree_on_the_spindown_families(model, family, the
                                                ("disk", "straight-line", "10")])
 def test_cfunc_and_closed_form_agree_on_the_steady_motions(model, motion, rate):
     (row,) = friction.steady_motion_rows(model, motion, RING if model == "ring" else {}, (rate,))
-    assert all(row["cfunc"][p]["agrees"] for p in friction.CFUNC_PRECISIONS), row["cfunc"]
+    assert all(row["cfunc"][p]["agrees"] for p in steady_friction.CFUNC_PRECISIONS), row["cfunc"]
 
 
 def _disagreement(model, th, phidot, psidot, values, precision, geometry=None):
     """|cfunc - closed form| over its bound (> 1: the check fails)."""
     eps = parse_precision(precision).eps
-    with mpmath.workdps(friction.DPS):
-        closed = friction.closed_form(model, th, phidot, psidot, values, geometry)
-        _, mu = friction.cfunc_value(model, th, phidot, psidot, values, precision)
-        return float(abs(mu - closed)) / friction.agreement_bound(phidot, psidot, values["g"], eps)
+    with mpmath.workdps(steady_friction.DPS):
+        closed = steady_friction.closed_form(model, th, phidot, psidot, values, geometry)
+        _, mu = steady_friction.cfunc_value(model, th, phidot, psidot, values, precision)
+        return float(abs(mu - closed)) / steady_friction.agreement_bound(phidot, psidot, values["g"], eps)
 
 
 @pytest.mark.parametrize("model,family,theta,params", CIRCLING)
@@ -97,7 +97,7 @@ def test_the_scan_follows_the_spindown_study(model, family, theta, params):
 
     th, phidot, psidot, _ = _family(model, family, theta, params)
     s = spindown(model, theta, family, params)
-    with mpmath.workdps(friction.DPS):
+    with mpmath.workdps(steady_friction.DPS):
         assert abs(phidot / s.phidot - 1) < mpmath.mpf(10) ** -40
         assert abs(psidot / s.psidot - 1) < mpmath.mpf(10) ** -40
 
@@ -120,8 +120,8 @@ def short_spindown():
     depend on c, its clock and the adiabatic parameter a scale with it, so the run is short."""
     from verify.studies.dissipation import STUDY_C
 
-    drift = friction.transported_slip("contact-rate", repr(100 * float(STUDY_C["contact-rate"])))
-    return drift, friction.slip_runs("contact-rate", drift)
+    drift = spindown_slip.transported_slip("contact-rate", repr(100 * float(STUDY_C["contact-rate"])))
+    return drift, spindown_slip.slip_runs("contact-rate", drift)
 
 
 def _within_departure(run_theta: float, drift_theta: float, adiabatic: float) -> bool:
@@ -133,8 +133,8 @@ def _within_departure(run_theta: float, drift_theta: float, adiabatic: float) ->
 def test_the_damped_run_slips_where_the_quasi_steady_drift_says(short_spindown):
     drift, runs = short_spindown
     levels = {x["mu"]: x for x in drift["levels"]}
-    assert [m for m in friction.MU_LEVELS if levels[m]["theta"] is None] == []
-    assert [leg["mu"] for leg in runs["legs"]] == list(friction.MU_LEVELS)
+    assert [m for m in spindown_slip.MU_LEVELS if levels[m]["theta"] is None] == []
+    assert [leg["mu"] for leg in runs["legs"]] == list(spindown_slip.MU_LEVELS)
     for leg in runs["legs"]:
         assert leg["outcome"] == "event:slips", leg
         d = levels[leg["mu"]]

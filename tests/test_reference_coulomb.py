@@ -18,7 +18,7 @@ from verify.engine.hybrid import solve as solve_hybrid
 from verify.frames import QUATERNION, euler_to_b
 from verify.reference import DIRECTORY, check_case, load_set
 from verify.reference.cases import case
-from verify.reference.coulomb_runs import grid_rows
+from verify.engine.hybrid_run import grid_rows
 from verify.precision import parse_precision
 from verify.scoring import InvalidRun, score
 

@@ -14,8 +14,9 @@ import sys
 import numpy as np
 import pytest
 
+from verify.studies import orbits
+from verify.studies.orbits import senses
 from verify.sweep import engine, parse
-from verify.sweep.engine import senses
 from verify.sweep.spec import SENSE_KEYS
 from verify.report import retrograde as retrograde_section
 from verify.studies import retrograde
@@ -35,10 +36,10 @@ def synthetic(loop_angle, guide_angle, spin=1.0, guide_radius=1.0, loop_radius=0
     t = np.linspace(0.0, T_END, 16001)  # 2.5 ms: 80 points a nutation
     y = np.zeros((len(t), 8))
     phi, alpha = loop_angle(t), guide_angle(t)
-    y[:, engine.TH] = 1.0 + 0.01 * np.cos(NUTATION * t)
-    y[:, engine.PH] = phi
-    y[:, engine.X] = guide_radius * np.cos(alpha) + loop_radius * np.cos(phi)
-    y[:, engine.Y] = guide_radius * np.sin(alpha) + loop_radius * np.sin(phi)
+    y[:, orbits.TH] = 1.0 + 0.01 * np.cos(NUTATION * t)
+    y[:, orbits.PH] = phi
+    y[:, orbits.X] = guide_radius * np.cos(alpha) + loop_radius * np.cos(phi)
+    y[:, orbits.Y] = guide_radius * np.sin(alpha) + loop_radius * np.sin(phi)
     return t, y, np.full(len(t), spin)
 
 
@@ -99,7 +100,7 @@ def test_conservative_controls_do_not_turn(mechanism):
     other three are undecided: their once-per-nutation samples step 0.26 turn, past the 0.25 that
     verify.circling accepts as unaliased."""
     spec = control_spec(mechanism)
-    rows = engine.run_chunk(spec, 0, threads=2)
+    rows = engine.run_chunk(spec, 0, threads=2, senses=senses)
     assert len(rows) == 4 and all(r["outcome"] == "ok" for r in rows)
     assert not any(r["retrograde_turn"] == 1 or r["retrograde_by_last_read"] == 1 or r["orbit_reversal"] == 1
                    for r in rows)
@@ -151,8 +152,8 @@ def test_a_mirrored_start_flips_orbit_and_spin_together(c):
     """(phidot, psidot) -> (-phidot, -psidot) is the mirror image of the run (x -> -x: theta is the same
     to the bit), so every sense flips and every verdict stays."""
     keys = ", ".join(f'"{k}"' for k in SENSE_KEYS)
-    rows = [engine.run_chunk(parse(MIRROR.format(c=c, phidot=sign * 40, psidot=sign * 5, keys=keys)), 0)[0]
-            for sign in (1, -1)]
+    specs = [parse(MIRROR.format(c=c, phidot=sign * 40, psidot=sign * 5, keys=keys)) for sign in (1, -1)]
+    rows = [engine.run_chunk(spec, 0, senses=senses)[0] for spec in specs]
     a, b = rows
     assert a["t_stop"] == b["t_stop"] and a["windows"] == b["windows"] >= 2
     flips = ("orbit_start", "orbit_end", "orbit_last", "spin_start", "spin_end", "node_turn_start", "node_turn_end",
@@ -187,7 +188,7 @@ def test_study_summary_counts_and_renders(tmp_path):
         results = {}
         for label, text in (("sweep", retrograde.spec_path(m).read_text()), ("control", retrograde.control_text(m))):
             spec = corners(text, f"{m} {label}", tmp_path / f"{m}-{label}.sqlite")
-            run_sweep(spec, threads=2, progress=False)
+            run_sweep(spec, threads=2, progress=False, senses=senses)
             with Store(spec) as store:
                 results[label] = (spec, store.rows(), 0.0)
         study[m] = s = retrograde.summarise(m, results)

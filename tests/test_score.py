@@ -211,7 +211,7 @@ def test_export_writes_every_case_and_each_form_b_file_scores_as_the_reference(t
     for n in names:
         assert (tmp_path / f"{n}.euler.csv").exists() and f"### `{n}`" in readme
         record, _, _ = _stored(n)
-        # form (b) is defined for the paper's bodies on the plane (verify/scoring/geometry.py); not yet for body files
+        # form (b) is defined for the paper's bodies on the plane (verify/contact_geometry.py); not yet for body files
         if record["model"]["name"] in ("gyroscope", "effective") or record["model"]["name"].startswith("body:"):
             assert not (tmp_path / f"{n}.matrix.csv").exists()
             continue

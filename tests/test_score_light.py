@@ -18,7 +18,7 @@ from models.symbols import STATE, theta
 from verify.frames import (BODIES_ON_PLANE, contact_vector, euler_to_b, from_euler_expressions, quaternion,
                            rotation_matrix)
 from verify.scoring import score
-from verify.scoring import geometry
+from verify import contact_geometry as geometry
 from verify.scoring.casefiles import load_set
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -5,6 +5,7 @@ Everything is written to temporary folders.
 """
 from __future__ import annotations
 
+import ast
 import math
 import os
 import signal
@@ -21,7 +22,7 @@ import sympy as sp
 from verify.cli import main
 from verify.engine.single import solve
 from verify.sweep import SPECS, SpecError, Store, StoreError, load, parse, run_sweep
-from verify.sweep.engine import senses
+from verify.studies.orbits import senses
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -201,10 +202,13 @@ def test_killed_sweep_keeps_whole_chunks_and_resumes_to_the_same_rows(tmp_path):
 
 
 def test_local_dask_cluster_gives_the_same_rows(tmp_path):
-    spec = load(small(tmp_path))
-    run_sweep(spec, threads=2, progress=False)
+    """Dask rows equal local rows; the spec records senses, so the reading travels to the workers too."""
+    path = small(tmp_path)
+    path.write_text(path.read_text().replace('"final_phi"]', '"final_phi", "windows", "orbit_start"]'))
+    spec = load(path)
+    run_sweep(spec, threads=2, progress=False, senses=senses)
     dask_store = tmp_path / "dask.sqlite"
-    result = run_sweep(spec, dask="local", progress=False, store_path=dask_store)
+    result = run_sweep(spec, dask="local", progress=False, store_path=dask_store, senses=senses)
     assert result.where.startswith("local Dask cluster") and result.rows == spec.n_points
     assert rows_of(dask_store) == rows_of(spec.store)
 
@@ -294,7 +298,7 @@ def test_dissipative_sweep_keeps_energy_plus_work(tmp_path):
     """E + W = E(0) along every run of a short ring+air-drag sweep (to 1e-13 relative: ~1e3 eps over
     ~1e3 steps, the bound of the dissipation study)."""
     spec = short_air_drag_sweep(tmp_path)
-    run_sweep(spec, threads=2, progress=False)
+    run_sweep(spec, threads=2, progress=False, senses=senses)
     with Store(spec) as store:
         rows = store.rows()
     assert len(rows) == spec.n_points == 8
@@ -308,14 +312,14 @@ def test_energy_drift_column_sees_unaccounted_work(tmp_path, monkeypatch):
 
     reduce = engine._reduce
 
-    def without_work(spec, sysm, indices, grid, samples, *rest):
-        samples = samples.copy()  # (grid, states, lanes)
-        samples[:, 8] = 0.0
-        return reduce(spec, sysm, indices, grid, samples, *rest)
+    def without_work(spec, ens, indices, grid, samples, *rest):
+        samples = samples.copy()  # (states, lanes, grid)
+        samples[ens.lanes.row("W")] = 0.0
+        return reduce(spec, ens, indices, grid, samples, *rest)
 
     monkeypatch.setattr(engine, "_reduce", without_work)
     spec = short_air_drag_sweep(tmp_path)
-    run_sweep(spec, threads=2, progress=False)
+    run_sweep(spec, threads=2, progress=False, senses=senses)
     with Store(spec) as store:
         drifts = [r["energy_drift_vs_terms"] for r in store.rows()]
     assert min(drifts) > 1e-6, drifts
@@ -359,6 +363,46 @@ def test_senses_of_a_run_too_short_to_read_are_nan():
     t, y, wz = _run(lambda t: 10 + 0 * t, lambda t: 3 + 0 * t)
     s = senses(t[:30], y[:30], wz[:30])
     assert all(math.isnan(v) for v in s.values())
+
+
+def test_a_sense_without_its_reading_is_refused_before_anything_is_written(tmp_path):
+    """The senses are a study's reading (verify.studies.orbits), passed in: a spec that records one and
+    gets no reading is refused by name before a store exists; with the reading the same spec runs."""
+    text = SMALL.format(t_end=2, chunk=8, store=tmp_path / "senses.sqlite", n_rates=2).replace(
+        '"final_phi"]', '"final_phi", "orbit_start", "windows"]')
+    spec = parse(text)
+    with pytest.raises(SpecError, match="records 'orbit_start'.*senses=verify.studies.orbits.senses"):
+        run_sweep(spec, threads=1, progress=False)
+    assert not (tmp_path / "senses.sqlite").exists()
+    assert run_sweep(spec, threads=1, progress=False, senses=senses).rows == 8  # the control: it runs
+
+
+def studies_imported(source: str, module: str) -> list:
+    """The modules of verify.studies that ``source`` (the text of module ``module``) imports, by ast."""
+    package = module.rsplit(".", 1)[0].split(".")
+    found = []
+    for node in ast.walk(ast.parse(source)):
+        names = []
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = package[: len(package) - node.level + 1] if node.level else []
+            names = [".".join(base + ([node.module] if node.module else []))]
+            names += [f"{names[0]}.{a.name}" for a in node.names]
+        found += [n for n in names if n == "verify.studies" or n.startswith("verify.studies.")]
+    return found
+
+
+def test_the_sweep_imports_no_study():
+    """The sweep is the machinery below the studies (docs/architecture.md): none of its modules imports
+    verify.studies, at the top or inside a function.  Negative control: the same reader finds a study
+    imported relatively from a module of the sweep."""
+    for path in sorted((ROOT / "verify" / "sweep").glob("*.py")):
+        assert studies_imported(path.read_text(), f"verify.sweep.{path.stem}") == [], path.name
+    assert studies_imported("def f():\n    from ..studies.orbits import senses\n", "verify.sweep.engine") == [
+        "verify.studies.orbits", "verify.studies.orbits.senses"]
+    assert studies_imported("from verify.studies import orbits\n", "verify.sweep.engine") == [
+        "verify.studies", "verify.studies.orbits"]
 
 
 def test_rows_do_not_depend_on_how_many_batches_are_reduced_together(tmp_path, monkeypatch):

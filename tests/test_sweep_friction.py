@@ -18,7 +18,6 @@ from verify.cli import main
 from verify.engine.single import solve
 from verify.precision import parse_precision
 from verify.sweep import SPECS, InvalidPoint, SpecError, load, parse
-from verify.sweep import engine as sweep_engine
 from verify.sweep.engine import run_chunk, validate_points
 from verify.sweep.plot import categories, render
 
@@ -167,12 +166,15 @@ def test_negative_control_a_wrong_event_function_is_caught(monkeypatch):
         return (fx ** 2 + fy ** 2) / comp.FRICTION - comp.contact_event_function(model) ** 2
 
     spec = small_spec(t_end=0.75)  # its own cooldown, hence its own cached system
-    monkeypatch.setattr(sweep_engine, "slip_event_function", wrong)
-    sweep_engine.system.cache_clear()
+    from verify.engine import ensemble, lanes
+
+    monkeypatch.setattr(lanes, "slip_event_function", wrong)
+    ensemble.clear()
     try:
         rows = run_chunk(spec, 0, threads=1, batch_size=4)
     finally:
-        sweep_engine.system.cache_clear()
+        monkeypatch.undo()
+        ensemble.clear()
     assert len(disagreements(rows, 0.75)) >= 3
 
 
@@ -180,8 +182,10 @@ def test_a_lane_without_the_coefficient_runs_as_before():
     """The coefficient is a per-lane parameter: a sweep without one compiles no slip event."""
     spec = load(SPECS / "disk-diameter-spin.toml")
     assert not spec.slips and spec.friction is None
-    assert "slips" not in sweep_engine.system("disk", 4, 21.0, False, False).events
-    assert sweep_engine.system("disk", 4, 21.0, False, True).events[-1] == "slips"
+    from verify.engine.ensemble import ensemble
+
+    assert "slips" not in ensemble("disk", "full", 4, 21.0, False, False).lanes.events
+    assert ensemble("disk", "full", 4, 21.0, False, True).lanes.events[-1] == "slips"
 
 
 # --- the spec --------------------------------------------------------------------------------------

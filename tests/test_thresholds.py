@@ -1,7 +1,7 @@
 """Linear stability thresholds (issue 4, part 1): closed forms checked by an independent route.
 
 The threshold comes from the symbolic stability coefficient w2 of the reduced Jacobian
-(verify/studies/thresholds.py).  The checks use the eigenvalues of a Jacobian obtained by
+(verify/studies/thresholds/).  The checks use the eigenvalues of a Jacobian obtained by
 numerical differentiation (mpmath, 30 digits) of the model's accelerations just above and
 below the threshold, and nonlinear runs with a tiny perturbation.
 """

@@ -209,6 +209,43 @@ def test_a_valid_sweep_stores_the_rows_of_its_lanes_unchanged_by_the_new_machine
         assert store.rows() == rows
 
 
+def test_lanes_run_again_alone_only_once_no_group_is_integrating(tmp_path, monkeypatch):
+    """A chunk's groups integrate one while the one before is reduced; a group with a failed batch drains
+    the rest first, so that heyoka's messages during the lone runs are theirs.  With a group of one batch
+    and the first batch taken as failed, every yield of the propagator comes before the first lone run,
+    and the rows are the same bits as a run without the failure."""
+    text = spec_text(tmp_path, axis="psidot", lo=0, hi=30, count=12, start="theta = 1.2\nphidot = 1").replace(
+        "chunk = 4", "chunk = 12")
+    spec = parse(text)
+    run_sweep(spec, threads=2, progress=False)
+    with Store(spec) as store:
+        rows = store.rows()
+    from verify.engine import ensemble as ensemble_module
+
+    log = []
+    real_propagate, real_alone = ensemble_module.Ensemble.propagate, ensemble_module.Ensemble.alone
+
+    def propagate(self, *args, **kwargs):
+        for item in real_propagate(self, *args, **kwargs):
+            log.append("yield")
+            yield item
+
+    def alone(self, *args, **kwargs):
+        log.append("alone")
+        return real_alone(self, *args, **kwargs)
+
+    monkeypatch.setattr(engine, "REDUCE_GROUP", 1)
+    monkeypatch.setattr(engine, "_batch_ok", lambda b, n: b.index != 0)
+    monkeypatch.setattr(ensemble_module.Ensemble, "propagate", propagate)
+    monkeypatch.setattr(ensemble_module.Ensemble, "alone", alone)
+    again = parse(text, store=str(tmp_path / "again.sqlite"))
+    run_sweep(again, threads=2, progress=False)
+    with Store(again) as store:
+        assert store.rows() == rows
+    assert log.count("yield") >= 2 and "alone" in log  # several groups, and lone runs
+    assert log.index("alone") > max(i for i, e in enumerate(log) if e == "yield")
+
+
 # --- runs that fail are stored as failures, never as data --------------------------------------------------
 
 def test_failing_lanes_are_named_and_their_neighbours_keep_their_bits(tmp_path):
@@ -237,7 +274,9 @@ def test_a_missed_event_is_a_failed_row_not_data(tmp_path, monkeypatch):
     run_sweep(spec, threads=1, progress=False)
     with Store(spec) as store:
         assert [r["outcome"] for r in store.rows()] == ["theta_stop", "theta_stop"]
-    monkeypatch.setattr(engine._Freeze, "__call__", lambda self, ta, d_sgn, lane: True)
+    from verify.engine.batch import Freeze
+
+    monkeypatch.setattr(Freeze, "__call__", lambda self, ta, d_sgn, lane: True)
     missed = parse(text, store=str(tmp_path / "missed.sqlite"))
     run_sweep(missed, threads=1, progress=False)
     with Store(missed) as store:

@@ -18,6 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 PHI, THETA, PSI = np.radians(35.0), np.radians(62.0), np.radians(55.0)
 AZIM = 5.0
@@ -62,7 +63,6 @@ def disk_3d(ax):
     rim = arc(C, e1, e2, 0, 2 * np.pi, 1.0, 120)
     ax.plot(*rim, color="k", lw=1.2)
     ax.add_collection3d(matplotlib.collections.PolyCollection([rim[:2].T], alpha=0))  # keep limits
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
     ax.add_collection3d(Poly3DCollection([rim.T], facecolor="#f3d9a4", alpha=0.45, edgecolor="none"))
     # inertial axes through C (dashed) and the vertical
     for v, name in ((X, "X"), (Y, "Y"), (Z, "Z")):

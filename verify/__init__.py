@@ -11,6 +11,7 @@ negligible against the magnitudes of I's terms); ``max_drift_vs_terms`` = that /
 sum of those magnitudes along the run (``max_drift_vs_terms_in_eps`` in units of epsilon; on
 this run 3.0e-35 = 0.16 eps: the disk's |E| is 0.006 of its term scale).
 """
+import importlib
 
 # Imported on first use (PEP 562), not here: ``python -m verify`` imports this package before its
 # __main__ runs, and the CLI's supervisor must fork while nothing (heyoka starts a thread) is loaded.
@@ -21,8 +22,6 @@ _LAZY = {"IntegrationError": "engine.single", "InvariantTrace": "engine.single",
 def __getattr__(name: str):
     if name not in _LAZY:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    import importlib
-
     value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
     globals()[name] = value
     return value
@@ -34,7 +33,7 @@ def __dir__():
 
 def score(run, case, **options):
     """Score another simulator's run against a reference case: :func:`verify.scoring.agreement.score` (a :class:`Score`)."""
-    from .scoring.agreement import score as _score
+    from .scoring.agreement import score as _score  # lazy: numpy (0.2 s): the CLI forks before anything heavy loads
 
     return _score(run, case, **options)
 

@@ -34,7 +34,7 @@ Form (b) is defined for the bodies on the plane: ``disk``, ``ring``, ``hurricane
 psi = phi; neither has a contact on the plane, and their runs are read in form (a) only.)
 
 The numeric parts (the columns, :func:`detect`, (b) -> (a), the contact point, the rotation's
-defect) live in :mod:`verify.scoring.geometry`, numpy only, so that scoring needs no sympy; they
+defect) live in :mod:`verify.contact_geometry`, numpy only, so that scoring needs no sympy; they
 are re-exported here and tested against the expressions of this module.
 """
 from __future__ import annotations
@@ -44,17 +44,15 @@ from functools import lru_cache
 import numpy as np
 import sympy as sp
 
-from models import get_model
-from models.symbols import STATE, STATE_NAMES, omega_body, phi, psi, theta, thetadot, to_inertial
+from models import disk, get_model, hurricane, ring
+from models.symbols import STATE, STATE_NAMES, frame_vectors, omega_body, phi, psi, theta, thetadot, to_inertial
 
-from .scoring.geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTION, QUATERNION,  # noqa: F401
+from .contact_geometry import (BOTH, EULER, FORMS, MATRIX, MATRIX_ENTRIES, MOTION, QUATERNION,  # noqa: F401
                                QUATERNION_FORM, b_to_euler, contact_point, detect, frame, matrix_from_quaternion,
                                rotation_defect)
 
 
 def _contact_geometry():
-    from models import disk, hurricane, ring
-
     return {"disk": (disk.R2, disk.R3, "rolling"), "ring": (ring.R2, ring.R3, "rolling"),
             "hurricane": (hurricane.R2, hurricane.R3, "rolling"),
             "sliding-disk": (sp.Integer(-1), sp.Integer(0), "smooth")}
@@ -83,8 +81,6 @@ def quaternion() -> tuple:
 
 def contact_vector(model: str) -> sp.Matrix:
     """r_P in inertial components (paper Eqs. 7, 47, 63)."""
-    from models.symbols import frame_vectors
-
     r2, r3, _ = CONTACT[model]
     _, e2, e3 = frame_vectors()
     return r2 * e2 + r3 * e3

@@ -73,7 +73,7 @@ def isatty(stream) -> bool:
 def _flush_c_stdio() -> None:
     """fflush(NULL): C and C++ (std::cout is synced with stdio) output still in the C library's buffers."""
     try:
-        import ctypes
+        import ctypes  # lazy: ctypes (3 ms) only in the command's process, not the supervisor or 'import verify.cli'
 
         ctypes.CDLL(None).fflush(None)
     except Exception:  # pragma: no cover - no libc to flush
@@ -233,7 +233,7 @@ def _single_threaded() -> bool:
     try:
         return len(os.listdir("/proc/self/task")) == 1
     except OSError:
-        import threading
+        import threading  # lazy: threading (3 ms) only where /proc/self/task is missing (not Linux)
 
         return threading.active_count() == 1
 
@@ -241,7 +241,7 @@ def _single_threaded() -> bool:
 def _pipe() -> tuple:
     """A pipe whose two ends are neither 0, 1 nor 2: with stdout closed (``>&-``) os.pipe would
     hand out fd 1, and the child would take the pipe for its stdout."""
-    import fcntl
+    import fcntl  # lazy: POSIX only; supervise calls this only where os.fork exists
 
     ends = []
     for fd in os.pipe():
@@ -255,7 +255,7 @@ def _pipe() -> tuple:
 def _die_with(parent: int) -> None:
     """Linux: have the kernel SIGKILL this child when its parent, the supervisor, dies."""
     try:
-        import ctypes
+        import ctypes  # lazy: as in _flush_c_stdio
 
         ctypes.CDLL(None).prctl(1, int(signal.SIGKILL))  # PR_SET_PDEATHSIG
     except (OSError, AttributeError):  # not Linux

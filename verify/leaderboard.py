@@ -22,11 +22,20 @@ velocity.  ``python -m verify engines --case NAME`` reruns one case (or a few) a
 """
 from __future__ import annotations
 
+import importlib.util
 import json
+import math
 import subprocess
 import sys
 import time
+from importlib.metadata import version
 from pathlib import Path
+
+from models.catalogue import STATE_NAMES
+
+from .expressions import read_value
+from .provenance import cpu_model, source_commit, write_atomic
+from .scoring import score
 
 ROOT = Path(__file__).resolve().parent.parent
 ADAPTERS = ROOT / "examples" / "engines"
@@ -44,8 +53,6 @@ WORDS = ((10, "reference quality"), (6, "accurate"), (3, "good to 3 digits"), (1
 
 def load_adapter(name: str):
     """The adapter module ``examples/engines/<name>_adapter.py`` (examples/engines is not a package)."""
-    import importlib.util
-
     spec = importlib.util.spec_from_file_location(f"{name}_adapter", ADAPTERS / f"{name}_adapter.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
@@ -92,11 +99,8 @@ def engine_run(name: str, path: Path, case: str, setting: str, t_end) -> dict:
 
 def suite_run(case: str, precision: str, t_end) -> dict:
     """This suite's own run of ``case`` on the case's grid (up to ``t_end``), scored the same way."""
-    from .reference.store import DIRECTORY, load_set
-    from .engine.single import solve
-    from .expressions import read_value
-    from .scoring import score
-    from models.catalogue import STATE_NAMES
+    from .reference.store import DIRECTORY, load_set  # lazy: heyoka; the report imports words() from here
+    from .engine.single import solve  # lazy: as load_set
 
     if _coulomb_case(case) is not None:
         return _suite_hybrid_run(case, precision, t_end)
@@ -117,7 +121,7 @@ def suite_run(case: str, precision: str, t_end) -> dict:
 
 def _coulomb_case(case: str):
     """The :class:`~verify.reference.cases.ReferenceCase` of a Coulomb case (friction set), else None."""
-    from .reference.cases import case as reference_case
+    from .reference.cases import case as reference_case  # lazy: heyoka; the report imports words() from here
 
     try:
         c = reference_case(case)
@@ -135,10 +139,9 @@ def hybrid_form_b(sol, params: dict) -> dict:
     velocity u = v_C + omega x r_P is the slip).  A switch time (an output twice, the end of one phase and the
     start of the next, the same state) is kept once.
     """
-    import numpy as np
+    import numpy as np  # lazy: the board's text (words, merge_boards) needs no numpy
 
-    from .frames import MATRIX, euler_to_b
-    from models.catalogue import STATE_NAMES
+    from .frames import MATRIX, euler_to_b  # lazy: sympy; the report imports words() from here
 
     t = np.array([float(v) for v in sol.t])
     keep = np.concatenate([[True], np.diff(t) > 0])
@@ -156,9 +159,8 @@ def hybrid_form_b(sol, params: dict) -> dict:
 
 def _suite_hybrid_run(case: str, precision: str, t_end) -> dict:
     """This suite's own run of a Coulomb case (the event-driven hybrid) on the case's grid, scored in form (b)."""
-    from .engine.hybrid import solve
-    from .scoring import score
-    from models import get_model
+    from .engine.hybrid import solve  # lazy: heyoka; the report imports words() from here
+    from models import get_model  # lazy: as solve
 
     c = _coulomb_case(case)
     grid = [g for g in c.grid() if t_end is None or float(g) <= float(t_end) + 1e-12]
@@ -200,11 +202,9 @@ def _hybrid_slides(sol) -> dict:
 
 
 def _suite_version() -> str:
-    from importlib.metadata import version
+    from .precision import heyoka_version  # lazy: heyoka; the report imports words() from here
 
-    import heyoka
-
-    return f"{version('rolling-verify')}, heyoka {heyoka.__version__}"
+    return f"{version('rolling-verify')}, heyoka {heyoka_version()}"
 
 
 def words(record: dict) -> str:
@@ -280,8 +280,6 @@ def run_board(engines=None, cases=CASES, settings=SETTINGS, progress=print) -> d
                 progress(f"{name} {setting} {case}: {words(r)} ({r.get('wall_s', '-')} s)")
     for r in rows:
         r["words"] = words(r)
-    from .provenance import cpu_model, source_commit
-
     return {"format": "rolling-verify engines 1", "cases": [case_entry(c, t) for c, t in cases],
             "rows": rows, "machine": cpu_model(), "sources": source_commit()}
 
@@ -312,11 +310,9 @@ def merge_boards(old: dict, new: dict) -> dict:
 def figure_png(board: dict) -> bytes:
     """Digits (fewest over the run) against wall time (log), one panel a case, one marker an engine
     (filled: its best settings; open: its defaults, or the suite in double)."""
-    import math
+    import matplotlib  # lazy: matplotlib (0.3 s) only when the figure is drawn
 
-    import matplotlib
-
-    from . import style
+    from . import style  # lazy: as matplotlib
 
     n = len(board["cases"])
     cols = 2 if n > 1 else 1
@@ -346,8 +342,6 @@ def figure_png(board: dict) -> bytes:
 
 def rewrite_figure(out="reports") -> Path:
     """``out/figures/engines.png`` again from ``out/engines.json`` (no engine is run)."""
-    from .provenance import write_atomic
-
     out = Path(out)
     board = json.loads((out / "engines.json").read_text())
     write_atomic(out / "figures" / "engines.png", figure_png(board))
@@ -356,8 +350,6 @@ def rewrite_figure(out="reports") -> Path:
 
 def write_board(board: dict, out="reports") -> list:
     """``out/engines.json`` and ``out/figures/engines.png``, each atomically, both rendered before either is written."""
-    from .provenance import write_atomic
-
     out = Path(out)
     files = {out / "engines.json": json.dumps(board, indent=1, default=str) + "\n",
              out / "figures" / "engines.png": figure_png(board)}

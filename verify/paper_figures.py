@@ -22,6 +22,7 @@ from typing import Optional
 
 import verify
 
+from .claims import all_claims
 from .claims.base import NOT_CHECKABLE, PAPER_FILE
 from .figure_starts import figures_with_runs, panel_sides, starts_of
 from .unicode_math import plain
@@ -194,8 +195,6 @@ def check_side(n: int, side: Optional[str]) -> Optional[str]:
 
 
 def _claims_of(n: int) -> tuple:
-    from .claims import all_claims
-
     return tuple(c for c in all_claims() if figure_of(c.source) == n)
 
 
@@ -228,8 +227,8 @@ def make_figure(n, side: Optional[str] = None, results_path: Optional[Path] = No
         the comparison.  Every claim of the figure is evaluated (the figure data hang on the
         first panel's evaluation); only the chosen side's are returned.
     """
-    from .report.claim_records import claim_record
-    from .report.figures import render
+    from .report.claim_records import claim_record  # lazy: not for 'figure --list'
+    from .report.figures import render  # lazy: matplotlib (1 s) only to draw; not for 'figure --list'
 
     n = check_figure_number(n)
     side = check_side(n, side)

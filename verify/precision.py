@@ -190,6 +190,16 @@ def _is_of(value, precision: Precision) -> bool:
     return isinstance(value, hy.real) and value.prec == precision.bits
 
 
+def max_mpfr_bits() -> int:
+    """The most bits an MPFR number of this heyoka build may have (``mp:BITS`` above it is refused)."""
+    return int(hy.real_prec_max())
+
+
+def heyoka_version() -> str:
+    """The version of heyoka the precisions run on (for records that name the engine)."""
+    return str(hy.__version__)
+
+
 def parse_precision(text) -> Precision:
     """``"double" | "long" | "quad" | "mp:BITS"`` (or a Precision) -> Precision."""
     if isinstance(text, Precision):

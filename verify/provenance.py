@@ -43,12 +43,12 @@ def source_commit() -> dict:
 
 
 def versions() -> dict:
-    import heyoka
-    import matplotlib
-    import mpmath
-    import numpy
-    import PIL
-    import sympy
+    import heyoka  # lazy: 1.5 s for the six; 'report' input checks import this module
+    import matplotlib  # lazy: as heyoka
+    import mpmath  # lazy: as heyoka
+    import numpy  # lazy: as heyoka
+    import PIL  # lazy: as heyoka
+    import sympy  # lazy: as heyoka
 
     return {
         "python": platform.python_version(),
@@ -74,7 +74,7 @@ def cpu_model() -> str:
 
 def provenance(precisions) -> dict:
     """Versions, the sources' commit and hash, and the precisions used (ladder order, no repeats)."""
-    from .precision import parse_precision
+    from .precision import parse_precision  # lazy: heyoka (1 s); 'report' input checks import this module
 
     used = sorted({parse_precision(p) for p in precisions}, key=lambda p: (p.bits, p.name))
     return {"versions": versions(), "source_commit": source_commit(), "source_sha256": source_hash(),

@@ -76,7 +76,7 @@ def reference_starts(directory: Path = REFERENCE) -> tuple:
 def figure_starts() -> tuple:
     """Every figure panel's start (:mod:`verify.figure_starts`), as :class:`Start`."""
     try:
-        from . import figure_starts as figures
+        from . import figure_starts as figures  # lazy: not for 'trajectory body:X'
     except ImportError:  # pragma: no cover - the registry is part of the suite
         return ()
     return tuple(Start(f.name, f.model, dict(f.params), dict(f.state), f.t_end, f"paper Fig. {f.figure}"

@@ -155,6 +155,7 @@ import argparse
 import json
 import sys
 import time
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
@@ -166,6 +167,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, besi
 
 from verify import score  # noqa: E402
 from verify.frames import QUATERNION_FORM  # noqa: E402
+from verify.scoring import START_TOLERANCE  # noqa: E402
 import friction_cases  # noqa: E402
 
 #: What a new user gets: MultibodyPlantConfig() and Simulator() untouched (time_step 1e-3,
@@ -214,8 +216,6 @@ def start_tolerance(record: dict, setting: dict) -> float:
     exactly; for the disk the cylinder's rim sits ``disk_half_thickness`` off the zero-thickness disk's,
     so C starts h cos(theta) higher than the disk's C -- the model difference, not an engine error,
     allowed for at 4 h and said in the score's verdict."""
-    from verify.scoring import START_TOLERANCE
-
     if record["model"]["name"] != "disk":
         return START_TOLERANCE
     return max(START_TOLERANCE, 4 * float(setting["disk_half_thickness"]))
@@ -239,12 +239,12 @@ def start_of(record: dict, body: dict) -> dict:
 
 def build(body: dict, s: dict):
     """(simulator, plant, plant context, rigid body) for the settings ``s``."""
-    from pydrake.geometry import AddContactMaterial, Cylinder, HalfSpace, ProximityProperties
-    from pydrake.multibody.plant import AddMultibodyPlant, CoulombFriction, MultibodyPlantConfig
-    from pydrake.multibody.tree import SpatialInertia, UnitInertia
-    from pydrake.math import RigidTransform
-    from pydrake.systems.analysis import Simulator
-    from pydrake.systems.framework import DiagramBuilder
+    from pydrake.geometry import AddContactMaterial, Cylinder, HalfSpace, ProximityProperties  # lazy: optional
+    from pydrake.multibody.plant import AddMultibodyPlant, CoulombFriction, MultibodyPlantConfig  # lazy: optional
+    from pydrake.multibody.tree import SpatialInertia, UnitInertia  # lazy: optional package (pydrake)
+    from pydrake.math import RigidTransform  # lazy: optional package (pydrake)
+    from pydrake.systems.analysis import Simulator  # lazy: optional package (pydrake)
+    from pydrake.systems.framework import DiagramBuilder  # lazy: optional package (pydrake)
 
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(time_step=s["time_step"], penetration_allowance=s["penetration_allowance"],
@@ -273,7 +273,7 @@ def build(body: dict, s: dict):
     diagram = builder.Build()
     sim = Simulator(diagram)
     if s["time_step"] == 0:
-        from pydrake.systems.analysis import ApplySimulatorConfig, SimulatorConfig
+        from pydrake.systems.analysis import ApplySimulatorConfig, SimulatorConfig  # lazy: optional package (pydrake)
 
         cfg = SimulatorConfig()
         if s["integrator"]:
@@ -288,9 +288,9 @@ def build(body: dict, s: dict):
 
 
 def set_start(plant, context, rigid, b0: dict) -> None:
-    from pydrake.common.eigen_geometry import Quaternion
-    from pydrake.math import RigidTransform, RotationMatrix
-    from pydrake.multibody.math import SpatialVelocity
+    from pydrake.common.eigen_geometry import Quaternion  # lazy: optional package (pydrake)
+    from pydrake.math import RigidTransform, RotationMatrix  # lazy: optional package (pydrake)
+    from pydrake.multibody.math import SpatialVelocity  # lazy: optional package (pydrake)
 
     q = Quaternion(b0["qw"], b0["qx"], b0["qy"], b0["qz"])  # Drake's order is (w, x, y, z), like the suite's
     plant.SetFreeBodyPose(context, rigid, RigidTransform(RotationMatrix(q), [b0["x"], b0["y"], b0["z"]]))
@@ -358,9 +358,7 @@ def outcome_of(cols: dict, body: dict) -> str:
 
 
 def version() -> str:
-    from importlib.metadata import version as v
-
-    return v("drake")
+    return metadata.version("drake")
 
 
 def run_case(case: str, setting="default", t_end: float | None = None, out: str | None = None) -> dict:

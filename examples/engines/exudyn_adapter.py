@@ -232,9 +232,9 @@ def start_b(record: dict, body: dict) -> dict:
 
 def build(record: dict, setting: dict):
     """(mbs, body, sensors, b0): the system assembled with the case's start."""
-    import exudyn as exu
+    import exudyn as exu  # lazy: optional package (exudyn)
     from exudyn.utilities import (MarkerBodyRigid, NodeGenericData, ObjectConnectorRollingDiscPenalty, ObjectGround,
-                                  ObjectJointRollingDisc, RigidBodyInertia, SensorBody)
+                                  ObjectJointRollingDisc, RigidBodyInertia, SensorBody)  # lazy: optional
 
     body = body_of(record)
     b0 = start_b(record, body)
@@ -270,7 +270,7 @@ def build(record: dict, setting: dict):
 
 def read_back(mbs, oBody, configuration=None) -> dict:
     """The body's state in form (b) columns (no t) as Exudyn reports it."""
-    import exudyn as exu
+    import exudyn as exu  # lazy: optional package (exudyn)
 
     conf = configuration or exu.ConfigurationType.Initial
     get = lambda kind: np.asarray(mbs.GetObjectOutputBody(oBody, kind, localPosition=[0, 0, 0], configuration=conf))
@@ -292,7 +292,7 @@ def check_start(got: dict, b0: dict, what: str, tol: float = 1e-12) -> float:
 
 
 def simulation_settings(setting: dict, t_end: float, grid_step: float):
-    import exudyn as exu
+    import exudyn as exu  # lazy: optional package (exudyn)
 
     s = exu.SimulationSettings()
     ti = s.timeIntegration
@@ -312,7 +312,7 @@ def simulation_settings(setting: dict, t_end: float, grid_step: float):
 
 def run_columns(record: dict, setting: dict, t_end: float) -> tuple:
     """(form (b) columns of the run, wall seconds, start error, solver's success flag)."""
-    import exudyn as exu
+    import exudyn as exu  # lazy: optional package (exudyn)
 
     mbs, oBody, sensors, b0 = build(record, setting)
     err0 = check_start(read_back(mbs, oBody), b0, "after Assemble")
@@ -349,7 +349,7 @@ def resolve(setting, record: dict | None = None) -> tuple:
 def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
     """Run ``case`` in Exudyn at ``setting`` ('default', 'best' or a dict overriding DEFAULT's keys) up to
     ``t_end`` (default the case's), score it and return a JSON-ready record (the columns under '_run')."""
-    import exudyn as exu
+    import exudyn as exu  # lazy: optional package (exudyn)
 
     record = load_case(case)
     name, st = resolve(setting, record)

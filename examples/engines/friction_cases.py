@@ -16,7 +16,7 @@ at t = 0, a skid).
   set, 0 on both cases: theta' = 0 at t = 0).
 * :func:`slip_speed`, :func:`slip_summary` -- the contact point's horizontal velocity
   u = v_C + omega x r_P along a run in form (b) (r_P = -e2 - h e3, the coin's rim edge; the
-  scorer's own geometry, :mod:`verify.scoring.geometry`), and where the run slides: every interval
+  scorer's own geometry, :mod:`verify.contact_geometry`), and where the run slides: every interval
   where |u| exceeds :data:`SLIP_THRESHOLD`, its end taken as the stick.
 * :func:`reference_switches` -- where the reference slips and sticks (the reference file's switch times
   when it has them, else this suite's hybrid run of the case in double).
@@ -40,6 +40,15 @@ import json
 from functools import lru_cache
 
 import numpy as np
+import sympy as sp
+
+from models import get_model
+from models.symbols import STATE_NAMES
+from verify.engine.hybrid import solve
+from verify.frames import euler_to_b
+from verify.reference.cases import case
+from verify.reference.store import DIRECTORY
+from verify.contact_geometry import b_to_euler, contact_vector
 
 #: Contact slip speed (R/s, length unit per second) above which a run is said to slide (see the module).
 SLIP_THRESHOLD = 0.1
@@ -47,8 +56,6 @@ SLIP_THRESHOLD = 0.1
 
 def _case(name: str):
     """The :class:`~verify.reference.cases.ReferenceCase` called ``name``, or None when there is none."""
-    from verify.reference.cases import case
-
     try:
         return case(name)
     except ValueError:
@@ -58,11 +65,6 @@ def _case(name: str):
 def record_from_case(c) -> dict:
     """The keys of a reference file the adapters read (name, model and its parameters, initial_state,
     t_end, grid), built from the case itself: for a Coulomb case whose file is not made yet."""
-    import sympy as sp
-
-    from models import get_model
-    from models.symbols import STATE_NAMES
-
     model = get_model(c.model)
     params = {}
     for p in model.parameters:
@@ -79,8 +81,6 @@ def load_case(name: str) -> dict:
     ``coulomb`` is None for a rolling case (the adapters then roll without slipping, as before), else
     ``{"mu": mu, "velocity": None or the skid's [vx, vy]}`` as decimal strings.
     """
-    from verify.reference.store import DIRECTORY
-
     path = DIRECTORY / f"{name}.json"
     c = _case(name)
     if path.exists():
@@ -104,9 +104,6 @@ def friction_of(record: dict):
 def start_b(record: dict, model: str, params: dict) -> dict:
     """The case's start in form (b) as floats, for ``model`` with ``params`` (as the adapter simulates it),
     with a skid's centre of mass velocity (``record['coulomb']['velocity']``) in place of the rolling one."""
-    from models.symbols import STATE_NAMES
-    from verify.frames import euler_to_b
-
     start = {n: np.array([float(record["initial_state"][n])]) for n in STATE_NAMES}
     b0 = {c: float(v[0]) for c, v in euler_to_b(model, start, params).items()}
     velocity = (record.get("coulomb") or {}).get("velocity")
@@ -119,10 +116,8 @@ def slip_speed(columns: dict, record: dict) -> np.ndarray:
     """|horizontal velocity of the contact point| along a run in form (b) (matrix or quaternion columns).
 
     u = v_C + omega x r_P with r_P = -e2 - h e3 (the coin; h = 0 for the disk), the scorer's geometry
-    (:func:`verify.scoring.geometry.contact_vector`); its vertical part is the height constraint's, not slip.
+    (:func:`verify.contact_geometry.contact_vector`); its vertical part is the height constraint's, not slip.
     """
-    from verify.scoring.geometry import b_to_euler, contact_vector
-
     cols = {k: np.asarray(v, float) for k, v in columns.items()}
     state, _, w = b_to_euler(cols)
     params = {k: float(v["decimal"]) for k, v in record["model"]["parameters"].items()}
@@ -194,8 +189,6 @@ def creep(columns: dict, record: dict, ref: dict, margin: float = 0.01):
 
 @lru_cache(maxsize=None)
 def _hybrid_run(name: str, n_eval: int):
-    from verify.engine.hybrid import solve
-
     c = _case(name)
     return solve(c.run_model, c.t_end, c.state, c.exact_params, friction=c.friction, velocity=c.velocity,
                  precision="double", n_eval=n_eval)

@@ -140,6 +140,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, besi
 from models.symbols import STATE_NAMES  # noqa: E402
 from verify import score  # noqa: E402
 from verify.frames import QUATERNION_FORM, b_to_euler  # noqa: E402
+from verify.scoring import START_TOLERANCE  # noqa: E402
 import friction_cases  # noqa: E402
 
 #: MuJoCo's own defaults (option and geom), as a new user gets them: only what describes the body is set.
@@ -251,7 +252,7 @@ def check_start(back: dict, b0: dict, record: dict) -> float:
 
 def simulate(record: dict, s: dict, t_end: float) -> tuple:
     """(columns dict of arrays, outcome, start check, number of contacts at the end)."""
-    import mujoco
+    import mujoco  # lazy: optional package (mujoco)
 
     body = body_of(record, s["half_height"])
     m = mujoco.MjModel.from_xml_string(mjcf(body, s))
@@ -292,8 +293,6 @@ def start_tolerance(record: dict, setting: dict) -> float:
     exactly; for the disk the cylinder's rim sits ``half_height`` off the zero-thickness disk's, so C
     starts h cos(theta) higher than the disk's C -- the model difference, not an engine error, allowed
     for at 4 h and said in the score's verdict."""
-    from verify.scoring import START_TOLERANCE
-
     if record["model"]["name"] != "disk":
         return START_TOLERANCE
     return max(START_TOLERANCE, 4 * float(setting["half_height"]))

@@ -124,6 +124,8 @@ import json
 import math
 import sys
 import time
+from fractions import Fraction
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
@@ -135,6 +137,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # friction_cases, besi
 
 from verify import score  # noqa: E402
 from verify.frames import MOTION, QUATERNION  # noqa: E402
+from verify.scoring import START_TOLERANCE  # noqa: E402
 import friction_cases  # noqa: E402
 
 COLUMNS = ("t",) + QUATERNION + MOTION
@@ -196,8 +199,6 @@ def output_steps(record: dict, dt: float, t_end: float, per_grid: int = 8) -> li
     The time is step * dt (the engine's own clock, exact for dt = 2^-n); such times are in
     general not the stored grid's, so the scorer re-integrates the reference in quad there.
     """
-    from fractions import Fraction
-
     spacing = float(record["grid"][1]) - float(record["grid"][0])
     k = max(1, round(spacing / per_grid / dt))
     n_end = int(math.floor(t_end / dt + 1e-9))
@@ -216,7 +217,7 @@ def _read_c(p, cid, body) -> dict:
 
 def setup(record: dict, setting: dict):
     """A DIRECT PyBullet client with the plane and the body at the case's start; (p, client, body, geometry, b0)."""
-    import pybullet as p
+    import pybullet as p  # lazy: optional package (pybullet)
 
     geo = _with_override(body_geometry(record, setting), setting)
     # the start in form (b) for the model actually simulated: for the disk, the cylinder of
@@ -284,8 +285,6 @@ def start_tolerance(geo: dict) -> float:
     cylinder is exactly; for the disk, the cylinder's rim sits half its height off the zero-thickness
     disk's, so C starts h cos(theta) higher than the disk's C: the model difference, not an engine error,
     allowed for at 4 h (said in the score's verdict as a loosened start)."""
-    from verify.scoring import START_TOLERANCE
-
     return max(START_TOLERANCE, 4 * (geo["h"] - geo["h_model"]))
 
 
@@ -314,7 +313,7 @@ def simulate(record: dict, setting: dict, t_end: float):
 
 
 def run_case(case: str, setting="default", t_end=None, out=None) -> dict:
-    import pybullet
+    import pybullet  # lazy: optional package (pybullet)
 
     record = load_case(case)
     table = COULOMB_SETTINGS if friction_cases.friction_of(record) is not None else SETTINGS
@@ -358,8 +357,7 @@ def _e3z(c):
 
 def _version(pybullet) -> str:
     try:
-        from importlib.metadata import version
-        return version("pybullet")
+        return metadata.version("pybullet")
     except Exception:  # noqa: BLE001
         return "unknown"
 

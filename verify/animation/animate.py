@@ -10,6 +10,7 @@ panel's drawing and camera :mod:`verify.animation.scene`; the body geometry
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import re
 import shutil
@@ -20,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import AnimationError
+from .revolution import profile_for
 from .run import AnimationRun, checked_arrays
 from . import geometry, timing
 
@@ -83,9 +85,9 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
     (matplotlib.figure.Figure, list of Panel, Clock, callable)
         The last item draws frame k and returns the changed artists.
     """
-    from matplotlib.figure import Figure  # matplotlib only when drawing: geometry imports stay cheap
+    from matplotlib.figure import Figure  # lazy: matplotlib (0.5 s) only to draw; 'animate' checks --out first
 
-    from .scene import Panel
+    from .scene import Panel  # lazy: .scene imports matplotlib (0.5 s), as Figure above
 
     runs = list(runs) if not isinstance(runs, AnimationRun) else [runs]
     if not runs or not all(isinstance(r, AnimationRun) for r in runs):
@@ -96,6 +98,8 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
         speed = _check_number("speed", speed, 0)
     width = int(_check_number("width_px", width_px, 15)) // 2 * 2  # even: video encoders need it
     params = [geometry.checked_params(r.model, r.params) for r in runs]
+    profiles = [profile_for(r.model, r.body, p) if geometry.body_kind(r.model) == "revolution" else None
+                for r, p in zip(runs, params)]
     arrays = [checked_arrays(r) for r in runs]
     for run, a in zip(runs, arrays):
         timing.check_grid(run.label, a)
@@ -105,8 +109,12 @@ def build(runs, *, speed=None, fps=25, width_px=480, max_seconds=20.0):
     fig = Figure(figsize=(width / DPI, height / DPI), dpi=DPI)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.9, wspace=0)
     fontsize = max(4.0, min(11.0, width / n / 40))
-    panels = [Panel(fig.add_subplot(1, n, i + 1, projection="3d"), run.label, run.model, p, a, clock.times, fontsize)
-              for i, (run, p, a) in enumerate(zip(runs, params, arrays))]
+    panels = [Panel(fig.add_subplot(1, n, i + 1, projection="3d"), run.label, run.model, p, a, clock.times, fontsize,
+                    profile)
+              for i, (run, p, a, profile) in enumerate(zip(runs, params, arrays, profiles))]
+    common = max(p.span for p in panels)
+    for p in panels:  # one scale for every panel
+        p.widen(common)
     text = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=fontsize, family="monospace")
     step = clock.speed / fps
     state = timing.speed_text(clock.speed) + (f", to fit {clock.times[-1] / clock.speed:.3g} s" if clock.raised else "")
@@ -162,8 +170,8 @@ def animate(runs, out, *, speed=None, fps=25, width_px=480, max_seconds=20.0) ->
     """
     path, ext = _check_output(out)
     fig, panels, clock, draw = build(runs, speed=speed, fps=fps, width_px=width_px, max_seconds=max_seconds)
-    from matplotlib import animation, rc_context
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib import animation, rc_context  # lazy: matplotlib (0.5 s), as in build()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # lazy: as the line above
 
     FigureCanvasAgg(fig)
     n = len(clock.times)
@@ -203,8 +211,6 @@ def _offline_html(html: str) -> str:
     """The jshtml page made offline and reproducible: the stylesheet link to the icon CDN removed
     and the icons written as characters; matplotlib's random element id (uuid4) replaced by a
     hash of the page.  A remote reference left (a newer matplotlib) raises AnimationError."""
-    import hashlib
-
     html = re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)
     for icon, text in BUTTON_TEXT.items():
         html = html.replace(f'<i class="fa {icon}"></i>', text)

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..contact_geometry import CONTACT
 from .errors import AnimationError
 
 #: Which body each drawable model is.  The effective model (paper Eq. 96) is left out: it
@@ -35,7 +36,7 @@ DRAWN_MODELS = {
     "hurricane": "hurricane", "gyroscope": "gyroscope",
 }
 #: The parameters a body's drawing reads (others are accepted and ignored).
-REQUIRED_PARAMS = {"disk": ("k",), "ring": ("h",), "hurricane": (), "gyroscope": ()}
+REQUIRED_PARAMS = {"disk": ("k",), "ring": ("h",), "hurricane": (), "gyroscope": (), "revolution": ()}
 #: The ring's wall (inner radius 1 - w) where the run does not give ``w``: the paper's ring,
 #: w = 0.5 cm of R = 3.66 cm (text after Eq. 62).
 RING_WALL_DEFAULT = 0.5 / 3.66
@@ -43,17 +44,30 @@ RING_WALL_DEFAULT = 0.5 / 3.66
 PIVOT_DISTANCE = 2.0
 
 
+#: The prefix of a body of revolution's models (``body:NAME``, ``body:NAME+coulomb``, ``body:NAME+smooth``):
+#: drawn from the body file's profile (:mod:`verify.animation.revolution`).
+BODY_PREFIX = "body:"
+
+
 def body_kind(model: str) -> str:
-    """The body drawn for ``model``: 'disk', 'ring', 'hurricane' or 'gyroscope'.
+    """The body drawn for ``model``: 'disk', 'ring', 'hurricane', 'gyroscope', or 'revolution' (a body file's).
 
     Raises
     ------
     AnimationError
         ``model`` is not drawable (one line naming it and the drawable models).
     """
+    if isinstance(model, str) and model.startswith(BODY_PREFIX) and len(model) > len(BODY_PREFIX):
+        return "revolution"
     if model not in DRAWN_MODELS:
-        raise AnimationError(f"cannot animate model {model!r}; allowed: {', '.join(DRAWN_MODELS)}")
+        raise AnimationError(f"cannot animate model {model!r}; allowed: {', '.join(DRAWN_MODELS)}, or body:NAME "
+                             "(a body file's)")
     return DRAWN_MODELS[model]
+
+
+def body_name(model: str) -> str:
+    """NAME of a body model ``body:NAME``, ``body:NAME+coulomb`` or ``body:NAME+smooth``."""
+    return model[len(BODY_PREFIX):].split("+", 1)[0]
 
 
 def checked_params(model: str, params) -> dict:
@@ -100,9 +114,7 @@ def rotation(theta, phi, psi) -> np.ndarray:
 def contact_radii(kind: str, theta, params: dict) -> tuple:
     """(r2, r3) of r_P = r2 e2 + r3 e3 (paper Eqs. 7, 47, 63); arrays of theta's shape.
 
-    The scorer's numbers (:data:`verify.scoring.geometry.CONTACT`): one definition of each body's contact."""
-    from ..scoring.geometry import CONTACT
-
+    The scorer's numbers (:data:`verify.contact_geometry.CONTACT`): one definition of each body's contact."""
     if kind not in ("disk", "ring", "hurricane"):
         raise AnimationError(f"body {kind!r} has no contact on the plane; allowed: disk, ring, hurricane")
     theta = np.asarray(theta, float)

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import AnimationError
+from .geometry import rotation
 
 #: Largest turn of the body (radians) between two grid points that linear interpolation draws
 #: faithfully: 0.5 rad keeps the chord's sag at 1 - cos(0.25) = 3 % of the radius.
@@ -63,8 +64,6 @@ def grid_turn(arrays: dict) -> np.ndarray:
     """The angle (radians) the body turns between consecutive grid points: the angle of the
     rotation R_i^T R_(i+1), exact and free of the Euler angles' singularity at theta = 0 (where
     phi and psi can each jump while phi + psi, and so the body, barely moves)."""
-    from .geometry import rotation
-
     r = rotation(arrays["theta"], arrays["phi"], arrays["psi"])
     trace = np.einsum("nij,nij->n", r[:-1], r[1:])  # trace(R_i^T R_(i+1))
     return np.arccos(np.clip((trace - 1) / 2, -1.0, 1.0))

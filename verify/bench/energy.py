@@ -7,7 +7,9 @@ import numpy as np
 from models import get_model
 
 from ..engine.compile import compile_model
+from ..engine.single import solve
 from ..precision import parse_precision
+from ..standard import STANDARD_STATES
 from .sizes import _size
 
 ENERGY_LABELS = ("suite", "suite_high_accuracy", "plain")
@@ -15,8 +17,6 @@ ENERGY_LABELS = ("suite", "suite_high_accuracy", "plain")
 
 def energy_starts(n: int) -> list:
     """n starts near the disk's standard state: theta = 1.200, 1.205, ... (phidot 1, psidot 10)."""
-    from ..standard import STANDARD_STATES
-
     return [dict(STANDARD_STATES["disk"], theta=f"{1.2 + 0.005 * k:.3f}") for k in range(n)]
 
 
@@ -30,8 +30,6 @@ def energy_growth(quick: bool, progress, n_starts: int = None, t_end: float = No
     error crosses zero), summarised by the median and the interquartile range; and of the RMS over
     the starts, with a 90 % bootstrap interval (the starts resampled, fixed seed).
     """
-    from .. import solve
-
     n_starts = n_starts or _size("energy_starts", quick)
     T = t_end or _size("energy_t_end", quick)
     times = np.geomspace(1.0, T, 40)

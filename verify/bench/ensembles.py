@@ -1,4 +1,5 @@
-"""The sweep engine and the stability map against a bare batch ensemble of the same starts."""
+"""The sweep engine and the stability map against bare batch ensembles of the same starts: the yardstick with
+the suite's events and step cap, the plain ensemble without them, and what each guard costs."""
 from __future__ import annotations
 
 import dataclasses
@@ -13,8 +14,13 @@ import sympy as sp
 from models import get_model
 from models.symbols import STATE_NAMES
 
+from ..engine.batch import pad_lanes
 from ..engine.compile import compile_model
+from ..engine.lanes import compile_lanes
 from ..precision import parse_precision
+from ..studies.maps import prepare_runs, stability_map
+from ..sweep import SPECS, load, parse
+from ..sweep.engine import ensemble_of, fastest_rate, lane_inputs, run_chunk
 from .sizes import TARGETS, _g, _size
 from .timing import interleaved, ratio_record
 
@@ -53,8 +59,6 @@ quantities = ["max_theta", "min_theta", "final_theta"]
 def bench_sweep_spec(per_axis: int, samples: int = 101):
     """The benchmark's own sweep: theta in [1.0, 1.4] x phidot in [-2, 2] x psidot in [5, 15],
     ``per_axis`` values each, 10 s, one chunk, ``samples`` output points, three cheap reductions."""
-    from ..sweep import parse
-
     n = per_axis ** 3
     return parse(BENCH_SWEEP_TOML.format(samples=samples, n=n, c=per_axis), "<benchmark sweep>")
 
@@ -122,60 +126,129 @@ def bare_ensemble(model_name: str, states: np.ndarray, t_end: float, batch_size:
     return run
 
 
-def ensemble_against_bare(quick: bool, progress, repeats: int = None) -> list:
-    """The sweep engine (``run_chunk``) and the stability map against a bare batch ensemble of the
-    same starts, interleaved; throughput ratio = bare seconds / suite seconds (target >= 0.8)."""
-    from ..studies.maps import stability_map
-    from ..sweep import SPECS, load
-    from ..sweep.engine import run_chunk
+def bare_lanes(ens, form_kwargs: dict, states, values: dict, end, threads: int, max_delta_t=None, events=None):
+    """heyoka's own ensemble on the lane system of ``ens`` made bare (:func:`verify.engine.lanes.compile_lanes`
+    with ``bare``: no ``alive`` factor, the events' callback freezes nothing), only the ``events`` named
+    (None: all), no Python per lane.  ``end``: t_end (``ensemble_propagate_until_batch``) or an output grid
+    (``ensemble_propagate_grid_batch``).  Returns run() -> lanes that did not reach the end."""
+    lanes = compile_lanes(ens.model, ens.form, ens.batch_size, ens.cooldown, bare=True, events=events, **form_kwargs)
+    tb, bs = lanes.template, ens.batch_size
+    n = states.shape[1]
+    pad = pad_lanes(n, bs)
+    lane_states = np.ascontiguousarray(states[:, pad])
+    # heyoka sizes a bare system's parameters by the highest it reads: only those are laid out (by name)
+    pars = lanes.layout.columns(len(pad), {k: (v[pad] if np.ndim(v) else v) for k, v in values.items()
+                                           if k in lanes.layout})
+    options = {} if max_delta_t is None else {"max_delta_t": max_delta_t}
 
+    def gen(tc, b):
+        tc.set_time(0.0)
+        if tc.with_events:
+            tc.reset_cooldowns()
+        tc.state[:] = lane_states[:, b * bs:(b + 1) * bs]
+        tc.pars[:] = pars[:, b * bs:(b + 1) * bs]
+        return tc
+
+    def run():
+        if np.ndim(end):
+            res = hy.ensemble_propagate_grid_batch(tb, np.asarray(end, float), len(pad) // bs, gen,
+                                                   max_workers=threads, **options)
+        else:
+            res = hy.ensemble_propagate_until_batch(tb, float(end), len(pad) // bs, gen, max_workers=threads,
+                                                    **options)
+        return int(sum(o[0] != hy.taylor_outcome.time_limit for r in res for o in r[0].propagate_res))
+
+    return run
+
+
+#: The suite's route and its yardstick in every workload's record.
+SUITE, SAME, PLAIN = "suite", "bare, same events and step cap", "bare, no events, no step cap"
+#: The yardstick with the suite's dense output on its grid too (heyoka's ``ensemble_propagate_grid_batch``).
+SAME_OUTPUT = "bare, same events and step cap, output grid"
+
+
+def guard_variants(ens, form_kwargs, states, values, t_end, grid, threads, cap) -> dict:
+    """Bare ensembles that add the suite's guards one at a time (name -> run()): the yardstick with every
+    event and the step cap (:data:`SAME`), the plain ensemble without them (:data:`PLAIN`), each event alone,
+    the step cap alone, and the yardstick with the dense output on the suite's grid."""
+    variants = {SAME: bare_lanes(ens, form_kwargs, states, values, t_end, threads, cap),
+                PLAIN: bare_lanes(ens, form_kwargs, states, values, t_end, threads, None, events=())}
+    if cap is not None:
+        variants["bare + step cap only"] = bare_lanes(ens, form_kwargs, states, values, t_end, threads, cap, events=())
+    for name in dict.fromkeys(ens.lanes.events):  # the domain's two ends share a name: one guard
+        variants[f"bare + event {name} only"] = bare_lanes(ens, form_kwargs, states, values, t_end, threads, None,
+                                                          events=(name,))
+    variants[SAME_OUTPUT] = bare_lanes(ens, form_kwargs, states, values, grid,
+                                                                        threads, cap)
+    return variants
+
+
+def guard_costs(times: dict) -> list:
+    """Each guard's throughput relative to the plain bare ensemble (medians of the rounds; < 1: it costs)."""
+    plain = float(np.median(times[PLAIN]))
+    return [{"variant": k, "throughput_vs_plain": _g(plain / float(np.median(v)))} for k, v in times.items()
+            if k not in (PLAIN,)]
+
+
+def ensemble_against_bare(quick: bool, progress, repeats: int = None) -> list:
+    """The sweep engine (``run_chunk``) and the stability map against bare batch ensembles of the same starts,
+    interleaved.  The yardstick (target >= 0.9 of its throughput) has the suite's events and step cap: the
+    guards are correctness; beside it, the ratio to a plain ensemble without them and the cost of each guard."""
     repeats = repeats or _size("ensemble_rounds", quick)
     threads = os.cpu_count() or 1
     bs = hy.recommended_simd_size()
     out = []
 
-    def sweep_case(label, spec, chunks):
-        indices = [i for c in chunks for i in spec.chunk_points(c)]
-        starts = sweep_starts(spec, indices)
-        bare = bare_ensemble(spec.model, starts, spec.t_end, bs, threads)
-        run_chunk(spec, chunks[0], threads=threads, batch_size=bs)  # warm: compile, steady motions
-        progress(f"  ensembles: {label}, {len(indices)} trajectories, {repeats} rounds")
-
-        def suite():
-            return [row for c in chunks for row in run_chunk(spec, c, threads=threads, batch_size=bs)]
-
-        times, last = interleaved({"sweep engine (run_chunk)": suite, "bare ensemble_propagate_until_batch": bare},
-                                  repeats)
-        rows = last["sweep engine (run_chunk)"]
-        final_theta = np.array([r["final_theta"] for r in rows]) if "final_theta" in spec.record else None
-        rec = {"workload": label, "trajectories": len(indices), "t_end": spec.t_end, "samples": spec.samples,
-               "batch_size": bs, "threads": threads, "chunks": list(chunks), "record": list(spec.record),
-               "outcomes": _counts(r["outcome"] for r in rows), "bare_lanes_stopped": last[
-                   "bare ensemble_propagate_until_batch"][1],
-               "ratio": ratio_record(times, "sweep engine (run_chunk)", "bare ensemble_propagate_until_batch",
-                                     TARGETS["ensemble_throughput"], inverse=True)}
-        if final_theta is not None:
-            rec["final_theta_difference"] = _g(float(np.nanmax(np.abs(final_theta - last[
-                "bare ensemble_propagate_until_batch"][0][0]))))
+    def record(label, times, last, n, extra):
+        rec = {"workload": label, "trajectories": n, **extra,
+               "bare_lanes_stopped": {k: v for k, v in last.items() if k != SUITE},
+               "ratio": ratio_record(times, SUITE, SAME, TARGETS["ensemble_throughput"], inverse=True),
+               "ratio_no_guards": ratio_record(times, SUITE, PLAIN, inverse=True),
+               "ratio_same_output": ratio_record(times, SUITE, SAME_OUTPUT, inverse=True),
+               "guards": guard_costs({k: v for k, v in times.items() if k != SUITE})}
         out.append(rec)
+
+    def sweep_case(label, spec, chunks):
+        indices = np.array([i for c in chunks for i in spec.chunk_points(c)])
+        ens = ensemble_of(spec, bs)
+        states, model_pars, _ = lane_inputs(spec, indices)
+        values = {**ens.model_values(model_pars), "theta_max": float(ens.model.domain.theta_max)}
+        form = {"stop": spec.theta_stop is not None, "friction": spec.slips}
+        if spec.theta_stop is not None:
+            values = {**ens.model_values(model_pars), "theta_stop": spec.theta_stop}
+        grid = np.linspace(0.0, spec.t_end, spec.samples)
+        cap = 1.0 / fastest_rate(spec, ens)
+        runs = {SUITE: lambda: [row for c in chunks for row in run_chunk(spec, c, threads=threads, batch_size=bs)],
+                **guard_variants(ens, form, states, values, spec.t_end, grid, threads, cap)}
+        for run in runs.values():
+            run()  # warm: compile, steady motions
+        progress(f"  ensembles: {label}, {len(indices)} trajectories, {len(runs)} routes, {repeats} rounds")
+        times, last = interleaved(runs, repeats)
+        rows = last.pop(SUITE)
+        record(label, times, last, len(indices), {
+            "t_end": spec.t_end, "samples": spec.samples, "batch_size": bs, "threads": threads, "chunks": list(chunks),
+            "record": list(spec.record), "step_cap": _g(cap), "outcomes": _counts(r["outcome"] for r in rows)})
 
     def map_case(label, spin):
         n = _size("map_per_axis", quick)
         rates = np.array(spin.axes[0].values)[:: max(1, len(spin.axes[0].values) // n)][:n]
         tilts = np.array(spin.axes[1].values)[:: max(1, len(spin.axes[1].values) // n)][:n]
         smap = stability_map("disk", "diameter-spin", rates=rates[:2], tilts=tilts[:2])  # warm
-        bare = bare_ensemble("disk", map_starts(rates, tilts), smap.t_end, smap.batch_size, smap.threads)
-        progress(f"  ensembles: stability map, {len(rates) * len(tilts)} trajectories, {repeats} rounds")
-        times, last = interleaved({"stability_map": lambda: stability_map("disk", "diameter-spin", rates=rates, tilts=tilts),
-                                   "bare ensemble_propagate_until_batch": bare}, repeats)
-        smap = last["stability_map"]
-        out.append({"workload": label,
-                    "trajectories": smap.n_trajectories, "t_end": smap.t_end, "samples": smap.n_samples,
-                    "batch_size": smap.batch_size, "threads": smap.threads, "left": int(smap.left.sum()),
-                    "bare_lanes_stopped": last["bare ensemble_propagate_until_batch"][1],
-                    "map_propagation_seconds": _g(smap.wall_seconds),
-                    "ratio": ratio_record(times, "stability_map", "bare ensemble_propagate_until_batch",
-                                          TARGETS["ensemble_throughput"], inverse=True)})
+        runs_in = prepare_runs("disk", "diameter-spin", rates, tilts, smap.t_end, {}, smap.cap, False, smap.batch_size)
+        ens, k = runs_in.ensemble, runs_in.n
+        names = (*ens.model.parameter_names, "theta_lower", "theta_upper")
+        values = {name: ens.record(runs_in.pars, name)[:k] for name in names}
+        states = runs_in.states[:, :k]
+        runs = {SUITE: lambda: stability_map("disk", "diameter-spin", rates=rates, tilts=tilts),
+                **guard_variants(ens, {}, states, values, smap.t_end, runs_in.grid, smap.threads, None)}
+        for run in list(runs.values())[1:]:
+            run()
+        progress(f"  ensembles: stability map, {k} trajectories, {len(runs)} routes, {repeats} rounds")
+        times, last = interleaved(runs, repeats)
+        smap = last.pop(SUITE)
+        record(label, times, last, smap.n_trajectories, {
+            "t_end": smap.t_end, "samples": smap.n_samples, "batch_size": smap.batch_size, "threads": smap.threads,
+            "step_cap": None, "left": int(smap.left.sum()), "map_propagation_seconds": _g(smap.wall_seconds)})
 
     spin = load(SPECS / "disk-diameter-spin.toml")
     if quick:  # chunks of 40 points instead of 500

@@ -12,6 +12,8 @@ import heyoka as hy
 
 from ..provenance import cpu_model, source_commit, write_atomic
 from .commands import command_speed
+from .bodies import body_cost
+from .call_paths import call_path_cost
 from .compile_cost import compile_cost
 from .energy import energy_growth
 from .ensembles import ensemble_against_bare
@@ -46,6 +48,7 @@ def run_benchmarks(quick: bool = False, progress=None) -> dict:
                                 + solve_against_bare("disk", (_size("quad_t_end", quick),), "quad",
                                                      _size("quad_rounds", quick), invariants=False, progress=say))
     results["ensembles_vs_bare"] = ensemble_against_bare(quick, say)
+    results["call_paths"] = call_path_cost(quick, say)
     results["energy"] = energy_growth(quick, say)
     results["sweep"] = sweep_throughput(quick, say)
     wp = work_precision(quick, say)
@@ -56,6 +59,7 @@ def run_benchmarks(quick: bool = False, progress=None) -> dict:
                                  "same_accuracy": same_accuracy_speedup(wp["attempts"]),
                                  "same_accuracy_long": same_accuracy_speedup(wp["long"]) if wp["long"] else {}}
     results["compile"] = compile_cost(quick, say)
+    results["bodies"] = body_cost(quick, say)
     results["commands"] = command_speed(quick, say)
     results["load_average_end"] = [round(v, 2) for v in os.getloadavg()]
     results["wall_seconds"] = round(time.monotonic() - t0, 1)

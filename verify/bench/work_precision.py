@@ -18,6 +18,7 @@ from models.symbols import STATE, STATE_NAMES
 from ..engine.compile import compile_model
 from ..engine.single import max_step, resolve_parameters, resolve_state
 from ..precision import parse_precision
+from ..reference import load_set
 from .sizes import _size
 from .timing import _timed
 
@@ -46,8 +47,6 @@ class ReferenceProblem:
     """A reference case as an initial-value problem, with its agreed values on the grid."""
 
     def __init__(self, name: str):
-        from ..reference import load_set
-
         self.record = load_set(names=[name])[0]
         self.model = get_model(self.record["model"]["name"])
         self.params = {k: sp.Rational(v["exact"]) for k, v in self.record["model"]["parameters"].items()}
@@ -137,7 +136,7 @@ def _compiled_rhs(problem: ReferenceProblem):
 
 
 def scipy_attempts(problem: ReferenceProblem, method: str, tolerances, use_jac: bool, repeats: int = 1) -> list:
-    from scipy.integrate import solve_ivp
+    from scipy.integrate import solve_ivp  # lazy: scipy is optional (the bench extra, pyproject.toml)
 
     f, jac, y0 = _compiled_rhs(problem)
     T = float(problem.t())

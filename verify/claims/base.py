@@ -196,9 +196,9 @@ def definition(id, source, section, statement, reason, quote="", reading=None) -
 def rows_identity(id, source, section, statement, printed, derived, body: str, quote="", reading=None) -> Claim:
     """A printed vector equation (LHS - RHS, 1-2-3 components) against the derived rows of ``body``."""
     def check():
-        from ..mathtext import tex
-        from .vectors import same
-        import sympy as sp
+        from ..mathtext import tex  # lazy: sympy stays out of verify.claims.base (figure --list imports it)
+        from .vectors import same  # lazy: as above (vectors is sympy)
+        import sympy as sp  # lazy: as above
 
         p, d = printed(), derived()
         ok = same(p, d)

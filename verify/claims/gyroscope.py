@@ -15,6 +15,7 @@ from models.symbols import g, phidot, psidot, theta, thetadot, thetaddot, time_d
 
 from ..mathtext import equation, latex, tex
 from .base import TYPO, Claim, decide, definition
+from .hurricane import _cos_on_circle
 from .vectors import E3, c, omega_body, s, same, vertical_in_frame
 
 SECTION = "Gyroscope and effective Lagrangian (Eqs. 83-100)"
@@ -124,8 +125,6 @@ def _check_eq91_93():
 
 def _rolling_sleeping_threshold():
     """Least (phidot + psidot)^2 / g on the rolling balls' theta -> 0 circles (derived row 1, I1 = 7/5, I3 = 2/5)."""
-    from .hurricane import _cos_on_circle
-
     rho, sol = _cos_on_circle()
     P = sp.Symbol("P", positive=True)
     rate2 = sp.solve(sp.Eq(sol[0].subs(phidot**2, P), 1), P)[0]

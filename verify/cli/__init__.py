@@ -66,13 +66,13 @@ def main(argv=None) -> int:
             code = fail(1, str(exc))
         except (IntegrationError, RuntimeError) as exc:  # a failed run or a study that found no root
             if debug:
-                import traceback
+                import traceback  # lazy: traceback (3 ms) only with --debug; not loaded by '--help'
 
                 traceback.print_exc(file=err)
             code = fail(1, str(exc) or type(exc).__name__)
         except KeyboardInterrupt:
             if debug:
-                import traceback
+                import traceback  # lazy: traceback (3 ms) only with --debug; not loaded by '--help'
 
                 traceback.print_exc(file=err)
             code = fail(130, interrupted_line(session))
@@ -80,7 +80,7 @@ def main(argv=None) -> int:
             raise
         except Exception as exc:  # noqa: BLE001 - the CLI shows no traceback unless asked
             if debug:
-                import traceback
+                import traceback  # lazy: traceback (3 ms) only with --debug; not loaded by '--help'
 
                 traceback.print_exc(file=err)
                 code = fail(1, f"unexpected {type(exc).__name__}: {_one_line(exc)}")

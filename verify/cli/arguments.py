@@ -64,16 +64,14 @@ def _positive_int(text, what: str, top: int | None = None, low: int = 1) -> int:
 
 def _precision(text, option: str = "--precision"):
     """parse_precision, with the MPFR floor (verify.precision.MIN_MPFR_BITS) checked first."""
-    import heyoka as hy
-
-    from ..precision import FIXED, parse_precision
+    from ..precision import FIXED, max_mpfr_bits, parse_precision  # lazy: heyoka; the CLI's supervisor forks first
 
     s = str(text).strip()
-    allowed = f"double, long, quad or mp:BITS (MPFR, BITS an integer from {MP_MIN_BITS} to {hy.real_prec_max()})"
+    allowed = f"double, long, quad or mp:BITS (MPFR, BITS an integer from {MP_MIN_BITS} to {max_mpfr_bits()})"
     m = re.fullmatch(r"mp:\s*([+-]?\d+)", s)
     if m:
         bits = int(m.group(1))
-        if not MP_MIN_BITS <= bits <= hy.real_prec_max():
+        if not MP_MIN_BITS <= bits <= max_mpfr_bits():
             why = (f"below the MPFR minimum of {MP_MIN_BITS} bits (double's significand)" if bits < MP_MIN_BITS
                    else "above MPFR's largest precision")
             raise UsageError(f"{option} {_shown(text)}: {why}; allowed: {allowed}")
@@ -115,7 +113,7 @@ def _value_pairs(items, what: str) -> dict:
         for name, value in pairs.items():  # the decimal checks (and messages) of before
             _decimal(value, f"--{what} {name}={_shown(value)}")
         return pairs
-    from ..expressions import ExpressionError, read_value
+    from ..expressions import ExpressionError, read_value  # lazy: only for a value that is not a plain decimal
 
     out = {}
     for name, value in pairs.items():

@@ -3,9 +3,13 @@ each reads its arguments, runs, and hands its output to the session (``trajector
 Heavy modules are imported inside each command, so that ``--help`` and the listings answer at once."""
 from __future__ import annotations
 
+import json
 import math
 import sys
 import time
+from pathlib import Path
+
+from models.catalogue import ALIASES, BODY_PREFIX, COULOMB_NAMES, ENTRIES
 
 from ..guard import Session
 from .arguments import _DECIMAL, RunFailed, UsageError, _decimal, _numeric_pairs, _positive, _positive_int, _shown
@@ -16,8 +20,6 @@ from .output import _dumps
 
 def cmd_models(args, session: Session) -> int:
     """The models from :mod:`models.catalogue` (plain data, checked against the derivation by the tests)."""
-    from models.catalogue import ALIASES, COULOMB_NAMES, ENTRIES
-
     records = []
     for e in ENTRIES:
         records.append({
@@ -59,7 +61,7 @@ def cmd_models(args, session: Session) -> int:
 
 def cmd_starts(args, session: Session) -> int:
     """The named starts: every figure panel's and every reference case's (:mod:`verify.starts`)."""
-    from ..starts import DEFAULT_CASES, all_starts
+    from ..starts import DEFAULT_CASES, all_starts  # lazy: 10 ms kept out of --help, models
 
     starts = all_starts()
     if args.format == "json":
@@ -96,24 +98,67 @@ def _brief(text: str) -> str:
 
 def cmd_plot(args, session: Session) -> int:
     """``plot RUN --out FILE``: the picture of a saved run (:mod:`verify.series.plot`)."""
-    from ..series.files import RunFileError, read_run
-    from ..series.plot import picture_path, write_plot
+    from ..series.files import RunFileError, read_run  # lazy: numpy (0.25 s) kept out of --help
+    from ..series.plot import picture_path, write_plot  # lazy: numpy (0.2 s) kept out of --help
 
     try:
         out = picture_path(args.out, "--out")
         columns = read_run(args.run_file)
     except RunFileError as err:
         raise UsageError(str(err)) from None
+    body = _recorded_body(columns.meta, args.run_file)
     write_plot(columns, out)
-    session.emit(f"wrote {out} ({columns.meta.get('model')}, {len(columns.values['t'])} points, "
-                 f"{columns.meta.get('outcome')})")
+    session.emit(f"wrote {out} ({columns.meta.get('model')}{f', the body {body}' if body else ''}, "
+                 f"{len(columns.values['t'])} points, {columns.meta.get('outcome')})")
     return 0
 
 
+def _recorded_body(meta: dict, run_file) -> str | None:
+    """The name of the body a run's file records (``trajectory --body``), read back from its exact text and checked
+    against its fingerprint and model name, then registered (its name resolves here); None for a model's run."""
+    import tomllib  # lazy: tomllib (23 ms) only for 'plot' of a body's run; kept out of --help
+
+    from models.bodies import InvalidBody, body_from_mapping, fingerprint, register  # lazy: sympy, not --help
+
+    recorded = meta.get("body")
+    if recorded is None:
+        return None
+    try:
+        body = body_from_mapping(tomllib.loads(recorded["toml"]), f"{run_file}'s body")
+    except (KeyError, TypeError, tomllib.TOMLDecodeError, InvalidBody) as err:
+        raise UsageError(f"{run_file}: the body it records cannot be read ({err}); allowed: a file written by "
+                         "'trajectory --body ... --output'") from None
+    if fingerprint(body) != recorded.get("fingerprint") or register(body) != recorded.get("model"):
+        raise UsageError(f"{run_file}: the body text it records does not match its fingerprint "
+                         f"{str(recorded.get('fingerprint'))[:12]} (the file was edited); re-run the trajectory")
+    return body.name
+
+
+def _body_or_model(args, what: str) -> tuple:
+    """(body model or None, the rest of the positionals): ``--body FILE`` or ``body:NAME[@HASH]`` in the model's place."""
+    from .body_studies import body_model  # lazy: mpmath (45 ms) kept out of --help
+
+    given = [a for a in (args.model, getattr(args, "motion", None)) if a is not None]
+    if args.body is not None:
+        if given and given[0].startswith(BODY_PREFIX):
+            raise UsageError(f"give the body once: {given[0]} or --body {args.body}")
+        return body_model(args.body, "--body"), given
+    if given and given[0].startswith(BODY_PREFIX):
+        return body_model(given[0], what), given[1:]
+    return None, given
+
+
 def cmd_threshold(args, session: Session) -> int:
-    from ..studies.thresholds import bracket, threshold, to_record
+    from ..studies.thresholds import bracket, threshold, to_record  # lazy: heyoka, sympy (1 s) kept out of --help
 
     params = _numeric_pairs(args.param, "param")
+    body, rest = _body_or_model(args, "threshold")
+    if body is not None or args.theta0 is not None:
+        return _body_threshold(args, session, body, rest, params)
+    if len(rest) != 2:
+        raise UsageError("threshold takes a model and a motion (threshold disk straight-line), or a body and a motion "
+                         "(threshold --body FILE.toml straight-line, threshold body:NAME sleeping)")
+    args.model, args.motion = rest
     nonlinear = None
     try:
         if args.nonlinear_tilt is not None:
@@ -153,33 +198,59 @@ def cmd_threshold(args, session: Session) -> int:
     return 0
 
 
+def _body_threshold(args, session: Session, body, rest: list, params: dict) -> int:
+    """``threshold --body FILE MOTION`` / ``threshold body:NAME MOTION`` (:mod:`.body_studies`)."""
+    from .body_studies import body_threshold, threshold_text  # lazy: mpmath (45 ms) kept out of --help
+
+    if body is None:
+        raise UsageError("--theta0 picks one of a body's steady motions; give a body (--body FILE, body:NAME)")
+    if len(rest) != 1:
+        raise UsageError(f"threshold of a body takes one motion after it (straight-line, diameter-spin, sleeping); "
+                         f"got {len(rest)}: {' '.join(rest) or 'none'}")
+    if args.nonlinear_tilt is not None:
+        raise UsageError("--nonlinear-tilt is built for the paper's models (disk, ring, hurricane, ...): a body's threshold "
+                         "is checked on its full equations by verify/studies/steady_confirm.py (10 % either side)")
+    rec = body_threshold(body, rest[0], params, args.theta0)
+    session.emit(_dumps(rec) if args.format == "json" else threshold_text(rec))
+    return 0
+
+
 def cmd_spindown(args, session: Session) -> int:
-    from ..studies.spindown import spindown, to_record
+    from ..studies.spindown import spindown, to_record  # lazy: sympy (0.6 s) kept out of --help
 
     params = _numeric_pairs(args.param, "param")
     theta = _decimal(args.theta, f"--theta {_shown(args.theta)}")
+    body, rest = _body_or_model(args, "spindown")
+    if len(rest) != (0 if body is not None else 1):
+        raise UsageError("spindown takes a model (disk or ring) or a body (--body FILE.toml, body:NAME), and --theta")
+    energy = "m R^2/s^2"
     try:
-        rec = to_record(spindown(args.model, theta, args.family, params))
+        if body is not None:
+            from .body_studies import body_spindown_record  # lazy: mpmath (45 ms) kept out of --help
+
+            rec, energy = body_spindown_record(body, theta, args.family, params), "M L^2/s^2"
+        else:
+            rec = to_record(spindown(rest[0], theta, args.family, params))
     except ValueError as err:
         raise UsageError(str(err)) from None
     if args.format == "json":
         session.emit(_dumps(rec))
         return 0
-    units = {"theta": "rad", "phidot": "s^-1", "psidot": "s^-1", "paper_phidot": "s^-1",
-             "energy": "m R^2/s^2"}
-    session.emit("\n".join(f"{k:<15} {v}{' ' + units[k] if k in units else ''}" for k, v in rec.items()))
+    units = {"theta": "rad", "phidot": "s^-1", "psidot": "s^-1", "paper_phidot": "s^-1", "energy": energy}
+    session.emit("\n".join(f"{k:<15} {'none (no closed form for this body)' if v is None else v}"
+                           f"{' ' + units[k] if k in units and v is not None else ''}" for k, v in rec.items()))
     return 0
 
 
 def cmd_reference(args, session: Session) -> int:
-    from pathlib import Path
-
-    from .. import reference
+    from .. import reference  # lazy: heyoka, sympy (1 s) kept out of --help
 
     directory = Path(args.dir) if args.dir else reference.DIRECTORY
     say = lambda text: print(text, file=sys.stderr, flush=True)  # noqa: E731
     if args.export is None and args.format == "csv":
         raise UsageError("--format csv is for --export; --check prints text or json")
+    if args.body is not None:
+        args.case = _body_cases(args, directory)
     mode = "--export" if args.export is not None else "--prove" if args.prove else "--make" if args.make else "--check"
     for option, value, modes in (("--until", args.until, ("--prove",)), ("--budget", args.budget, ("--prove",)),
                                  ("--jobs", args.jobs, ("--make",)), ("--format", args.format, ("--check", "--export"))):
@@ -193,7 +264,7 @@ def cmd_reference(args, session: Session) -> int:
                 raise UsageError(f"--export needs --format csv or json (got {args.format or 'none'})")
             if args.precision is not None or args.case:
                 raise UsageError("--export writes every case; --precision and --case are for --check and --make")
-            from ..reference.export import export_set
+            from ..reference.export import export_set  # lazy: heyoka, sympy (1 s) kept out of --help
 
             written = export_set(Path(args.export), args.format, directory)
             if args.format == "json":
@@ -221,12 +292,32 @@ def cmd_reference(args, session: Session) -> int:
     return 0
 
 
+def _body_cases(args, directory) -> list:
+    """``reference --check --body NAME``: the names of every case of that body (its rolling and its Coulomb cases)."""
+    from ..scoring.casefiles import read_index  # lazy: numpy (0.2 s) kept out of --help
+    from .body_studies import body_model  # lazy: mpmath (45 ms) kept out of --help
+
+    if not args.check or args.case:
+        raise UsageError("--body is for --check without --case: it checks every case of that body")
+    name = body_model(args.body, "--body").name
+    try:
+        index = read_index(directory)
+    except (OSError, ValueError) as err:
+        raise UsageError(f"--dir {directory}: no reference set to check ({err})") from None
+    cases = [c["name"] for c in index["cases"] if c["model"].split("+")[0] == name]
+    if not cases:
+        bodies = sorted({c["model"].split("+")[0] for c in index["cases"] if c["model"].startswith("body:")})
+        raise UsageError(f"--body {args.body}: the reference set has no case of {name}; bodies with cases: "
+                         f"{', '.join(bodies) or 'none'}")
+    return cases
+
+
 def _prove(args, directory, say) -> int:
     """``reference --prove``: each case of <= 10 s (or those named) enclosed, resuming stored proofs."""
-    from fractions import Fraction
+    from fractions import Fraction  # lazy: fractions (8 ms) only for 'reference --prove'; kept out of --help
 
-    from ..reference import load_set
-    from ..reference.proved import prove_case, settings_of, write_summary
+    from ..reference import load_set  # lazy: heyoka, sympy (0.9 s) kept out of --help
+    from ..reference.proved import prove_case, settings_of, write_summary  # lazy: 0.9 s kept out of --help
 
     precision = args.precision or "mp:128"
     bits = precision[3:] if precision.startswith("mp:") else ""
@@ -254,10 +345,8 @@ def _prove(args, directory, say) -> int:
 
 def cmd_score(args, session: Session) -> int:
     """``score RUN --case NAME [--min-digits D]``: the table; exit 1 below D or for a partial run."""
-    from pathlib import Path
-
-    from ..scoring import START_TOLERANCE, score
-    from ..scoring.casefiles import DIRECTORY
+    from ..scoring import START_TOLERANCE, score  # lazy: numpy (0.2 s) kept out of --help
+    from ..scoring.casefiles import DIRECTORY  # lazy: numpy (0.2 s) kept out of --help
 
     tol = START_TOLERANCE if args.start_tol is None else float(_positive(args.start_tol, "--start-tol", "1e-9"))
     if not tol < 1:  # a tolerance of a whole scale or more (or one that overflows to inf) checks no start at all
@@ -281,10 +370,8 @@ def cmd_score(args, session: Session) -> int:
 
 
 def cmd_sweep(args, session: Session) -> int:
-    from pathlib import Path
-
-    from .. import sweep
-    from ..provenance import write_atomic
+    from .. import sweep  # lazy: heyoka, sympy (1 s) kept out of --help
+    from ..provenance import write_atomic  # lazy: verify.provenance (33 ms) kept out of --help
 
     try:
         spec = sweep.load(args.spec, store=args.store)
@@ -294,7 +381,7 @@ def cmd_sweep(args, session: Session) -> int:
                 raise UsageError("--plot draws from the store; it does not run anything (drop --dask)")
             if not Path(spec.store).exists():
                 raise UsageError(f"no store {spec.store} yet: run 'python -m verify sweep {args.spec}' first")
-            from ..sweep.plot import render
+            from ..sweep.plot import render  # lazy: heyoka, sympy (1 s) kept out of --help
 
             with sweep.Store(spec) as store:
                 rows = store.rows()
@@ -310,7 +397,10 @@ def cmd_sweep(args, session: Session) -> int:
             return 0
         session.interrupt_note = (f"the store {args.store or spec.store} keeps the finished chunks; "
                                   "rerun the same command to resume")
-        result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet, yes=args.yes)
+        from ..studies.orbits import senses  # lazy: only the sweep command reads orbits; start-up imports no study
+
+        result = sweep.run_sweep(spec, dask=args.dask, threads=threads, progress=not args.quiet, yes=args.yes,
+                                 senses=senses)
     except (sweep.SpecError, sweep.StoreError, sweep.ClusterError) as err:
         raise UsageError(str(err)) from None
     session.emit(f"{spec.name}: {result.rows} of {spec.n_points} trajectories in {result.store} "
@@ -320,7 +410,7 @@ def cmd_sweep(args, session: Session) -> int:
 
 
 def _output_folder(folder: str) -> str:
-    from ..provenance import writable_folder
+    from ..provenance import writable_folder  # lazy: verify.provenance (33 ms) kept out of --help
 
     try:
         writable_folder(folder)
@@ -330,7 +420,7 @@ def _output_folder(folder: str) -> str:
 
 
 def cmd_report(args, session: Session) -> int:
-    from ..report.write import MissingResults, ReportIncomplete, read_results, write_report
+    from ..report.write import MissingResults, ReportIncomplete, read_results, write_report  # lazy: not --help
 
     if args.fresh and args.render_only:
         raise UsageError("--fresh recomputes every job and --render-only computes none; give one of them")
@@ -348,10 +438,8 @@ def cmd_report(args, session: Session) -> int:
 
 def cmd_engines(args, session: Session) -> int:
     """``engines``: the leaderboard (verify.leaderboard): every engine adapter on the reference cases."""
-    import json
-    from pathlib import Path
-
-    from ..leaderboard import CASES, adapters, merge_boards, rewrite_figure, run_board, write_board
+    from ..leaderboard import (CASES, adapters, merge_boards, rewrite_figure, run_board,  # lazy: 27 ms, not for --help
+                               write_board)
 
     if args.render_only:
         if not (Path(args.out) / "engines.json").exists():
@@ -383,10 +471,10 @@ def cmd_engines(args, session: Session) -> int:
 
 
 def cmd_bench(args, session: Session) -> int:
-    from ..bench import run_benchmarks, write_benchmarks
+    from ..bench import run_benchmarks, write_benchmarks  # lazy: heyoka, sympy (0.9 s) kept out of --help
 
     try:
-        import scipy  # noqa: F401
+        import scipy  # noqa: F401  # lazy: scipy (0.2 s), optional: only to tell whether it is installed
     except ImportError:
         raise UsageError("the benchmark compares with scipy: pip install scipy (or the project's [bench] extra)") from None
     out = _output_folder(args.out)

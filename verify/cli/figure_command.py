@@ -40,7 +40,7 @@ def _out_folder(value) -> Path:
 
 
 def cmd_figure(args, session) -> int:
-    from .. import paper_figures as pf
+    from .. import paper_figures as pf  # lazy: the claims' index (35 ms) only for 'figure'; kept out of --help
 
     if args.list:
         if args.number is not None or args.side is not None or args.out is not None:
@@ -92,7 +92,7 @@ def cmd_figure(args, session) -> int:
 
 def _write(fig, folder: Path) -> list:
     """Write each image of ``fig`` atomically into ``folder``; the paths written."""
-    from ..provenance import write_atomic
+    from ..provenance import write_atomic  # lazy: verify.provenance (70 ms) kept out of --help
 
     paths = []
     for img in fig.images:

@@ -48,9 +48,18 @@ def parser() -> argparse.ArgumentParser:
     m.add_argument("--format", choices=("json", "text"), default="text")
     m.set_defaults(run=cmd_models)
 
-    th = sub.add_parser("threshold", help="linear stability threshold of a steady motion")
-    th.add_argument("model")
-    th.add_argument("motion", help="diameter-spin, straight-line, precession or sleeping (as the model has them)")
+    th = sub.add_parser("threshold", help="linear stability threshold of a steady motion (a model's or a body file's)",
+                        description="Examples: 'threshold disk straight-line', 'threshold body:rounded-coin diameter-spin', "
+                                    "'threshold --body my-body.toml sleeping --theta0 pi'.")
+    th.add_argument("model", nargs="?", default=None,
+                    help="a model (disk, sliding-disk, ring, hurricane, gyroscope) or body:NAME (or give --body FILE)")
+    th.add_argument("motion", nargs="?", default=None,
+                    help="diameter-spin, straight-line, precession or sleeping (as the model or body has them)")
+    th.add_argument("--body", default=None, metavar="FILE",
+                    help="a body file (any path), a shipped body's name or body:NAME@HASH, in place of the model: the "
+                         "generic steady motions of verify/studies/steady_bodies.py (docs/bodies.md)")
+    th.add_argument("--theta0", default=None, metavar="TILT",
+                    help="a body with two motions of one kind (sleeping at 0 and pi): the steady tilt of the one wanted")
     th.add_argument("--param", action="append", metavar="NAME=VALUE")
     th.add_argument("--nonlinear-tilt", default=None, metavar="TILT",
                     help="also bracket the threshold by bisection on the full equations with this tilt (e.g. 1e-6)")
@@ -58,7 +67,10 @@ def parser() -> argparse.ArgumentParser:
     th.set_defaults(run=cmd_threshold)
 
     sd = sub.add_parser("spindown", help="exact steady spin-down state at a tilt, against Eq. 45 / Eq. 61")
-    sd.add_argument("model", help="disk or ring")
+    sd.add_argument("model", nargs="?", default=None, help="disk or ring, or body:NAME (or give --body FILE)")
+    sd.add_argument("--body", default=None, metavar="FILE",
+                    help="a body file (any path), a shipped body's name or body:NAME@HASH, in place of the model "
+                         "(the paper's closed form shown where the body is the disk's or the ring's)")
     sd.add_argument("--theta", required=True)
     sd.add_argument("--family", default="cm-at-rest", help="cm-at-rest (default) or zero-vertical-spin")
     sd.add_argument("--param", action="append", metavar="NAME=VALUE")
@@ -81,6 +93,8 @@ def parser() -> argparse.ArgumentParser:
     ref.add_argument("--budget", default=None, metavar="SECONDS",
                      help="for --prove: wall-clock seconds per case for this run (default: none); the next run resumes")
     ref.add_argument("--case", action="append", metavar="NAME", help="only this case (repeatable)")
+    ref.add_argument("--body", default=None, metavar="NAME",
+                     help="for --check: every case of this body (a shipped body's name, body:NAME or its file)")
     ref.add_argument("--jobs", default=None, help="for --make: processes (default 2)")
     ref.add_argument("--dir", default=None, help="the set's folder (default: reports/reference)")
     ref.add_argument("--format", choices=("json", "text", "csv"), default=None,

@@ -12,11 +12,14 @@ import argparse
 import sys
 from dataclasses import dataclass
 
-from models.catalogue import ALIASES, ALL_NAMES, COULOMB_NAMES, STATE_NAMES
+from models import get_model, sources
+from models.catalogue import ALIASES, ALL_NAMES, BODY_PREFIX, COULOMB_NAMES, STATE_NAMES
 
+from ..engine.errors import IntegrationError
 from ..guard import Session, isatty
 from .arguments import (N_EVAL_MAX, RunFailed, UsageError, _decimal, _positive, _positive_int, _precision, _shown,
                         _value_pairs)
+from .output import _dumps, _not_ok, _text, coulomb_record, coulomb_text, trajectory_record
 
 MODEL_CHOICES = ALL_NAMES + COULOMB_NAMES + tuple(ALIASES)
 #: output points when the run is kept or drawn and --n-eval is not given (a smooth curve, a frame per point)
@@ -28,7 +31,8 @@ DEFAULT_T_END = "2"
 def add_run_options(p: argparse.ArgumentParser) -> None:
     """The options that say which run: model, start, state, parameters, time, precision."""
     p.add_argument("model", nargs="?", default=None,
-                   help=f"one of: {', '.join(MODEL_CHOICES)} (optional with --start)")
+                   help=f"one of: {', '.join(MODEL_CHOICES)} (optional with --start), or body:NAME for a body file "
+                        "(as --body NAME)")
     p.add_argument("--start", default=None, metavar="NAME",
                    help="a named start: a figure's (fig5-lhs) or a reference case's (disk-standard-1); "
                         "'python -m verify starts' lists them.  Without --start and --state: the model's default start")
@@ -43,12 +47,13 @@ def add_run_options(p: argparse.ArgumentParser) -> None:
                    help="a friction coefficient: rolling models stop at the event slips where the motion needs more; "
                         "disk+coulomb and ring+coulomb roll and slide with it")
     p.add_argument("--body", default=None, metavar="FILE",
-                   help="a body of revolution from its profile, in place of a model: a TOML body file or a shipped "
-                        "body's name (rounded-coin, routh-sphere, prolate-ellipsoid, ...: models/bodies/)")
+                   help="a body of revolution from its profile, in place of a model: a TOML body file (any path), a "
+                        "shipped body's name (rounded-coin, routh-sphere, prolate-ellipsoid, ...: models/bodies/) or a "
+                        "model name body:NAME@HASH printed by an earlier run (docs/bodies.md)")
     p.add_argument("--velocity", default=None, metavar="VX,VY",
                    help="disk+coulomb, ring+coulomb: the centre of mass's horizontal velocity at t = 0 (default: rolling)")
     p.add_argument("--friction-law", default="coulomb", choices=("coulomb", "smooth"),
-                   help="with --body and --friction: exact Coulomb friction (default; rolls, slides, sticks) or the "
+                   help="with --body (any body file) and --friction: exact Coulomb friction (default; rolls, slides, sticks) or the "
                         "smooth law -mu N u/sqrt(|u|^2 + eps^2) (docs/tippe-top.md)")
     p.add_argument("--slip-scale", default=None, metavar="EPS",
                    help="--friction-law smooth: the slip scale eps of the smooth law, in R/s")
@@ -72,6 +77,7 @@ class RunRequest:
     body: object = None  # the Model of --body FILE (models.bodies), in place of a model name
     law: str = "coulomb"  # --friction-law, with --body and --friction
     slip_scale: object = None  # --slip-scale, with --friction-law smooth
+    body_file: object = None  # the models.bodies.Body of --body (every law), recorded in the run's files
 
 
 def read_request(args) -> RunRequest:
@@ -80,9 +86,13 @@ def read_request(args) -> RunRequest:
     The start's values come first (a named start, or the model's default when neither --start nor
     --state is given), then --param and --state override them one by one.
     """
-    from .. import starts
+    from .. import starts  # lazy: verify.starts (12 ms) kept out of --help
 
     state, params = _value_pairs(args.state, "state"), _value_pairs(args.param, "param")
+    if args.model is not None and args.model.startswith(BODY_PREFIX):  # body:NAME[@HASH] in a model's place: --body
+        if getattr(args, "body", None) is not None:
+            raise UsageError(f"give the body once: the model {args.model} or --body {args.body}")
+        args.body, args.model = args.model, None
     if getattr(args, "body", None) is not None:
         return _body_request(args, state, params)
     typed = args.model
@@ -149,7 +159,7 @@ def read_request(args) -> RunRequest:
 def _body_request(args, state: dict, params: dict) -> RunRequest:
     """The run of ``--body FILE``: the body's model, --state (default: tilted to the middle of its domain,
     phidot 1, psidot 10), --param I1/I3/g, --t-end (default 2 s)."""
-    from models.bodies import InvalidBody, default_start, load, model_of
+    from models.bodies import InvalidBody, default_start, load, model_of  # lazy: sympy (0.6 s) kept out of --help
 
     if args.model is not None or args.start is not None:
         raise UsageError(f"--body {args.body} is the body: drop the model {args.model or ''}{' and ' if args.model and args.start else ''}"
@@ -163,7 +173,7 @@ def _body_request(args, state: dict, params: dict) -> RunRequest:
         raise UsageError(f"--equations {args.equations!r}: a body file has the derived equations only")
     try:
         body = load(args.body)
-        model = model_of(body)
+        model = model_of(body)  # its name: body:NAME (shipped) or body:NAME@HASH (registered: resolves in this process)
     except InvalidBody as err:
         raise UsageError(str(err)) from None
     if not state:
@@ -173,24 +183,19 @@ def _body_request(args, state: dict, params: dict) -> RunRequest:
     t_end = DEFAULT_T_END if args.t_end is None else str(_positive(args.t_end, "--t-end", "2 (seconds)"))
     if args.t_end is None:
         how += f", t_end {DEFAULT_T_END} s (the default; --t-end to change)"
-    given = {"body": str(args.body), "state": {k: str(v) for k, v in state.items()},
+    given = {"body": str(args.body), "body_model": model.name, "state": {k: str(v) for k, v in state.items()},
              "params": {k: str(v) for k, v in params.items()}, "t_end": args.t_end}
     if args.friction is None:
-        return RunRequest(model.name, "derived", params, state, str(t_end), None, None, how, given, body=model)
-    return _friction_body_request(args, model, params, state, str(t_end), how, given, law)
+        return RunRequest(model.name, "derived", params, state, str(t_end), None, None, how, given, body=model,
+                          body_file=body)
+    return _friction_body_request(args, model, body, params, state, str(t_end), how, given, law)
 
 
-def _friction_body_request(args, model, params, state, t_end, how, given, law) -> RunRequest:
-    """``--body NAME --friction MU``: a shipped body under exact Coulomb friction (the hybrid of
-    :mod:`verify.engine.hybrid`, ``body:NAME+coulomb``) or the smooth law (:mod:`verify.engine.smooth`)."""
-    from models.bodies import shipped
-
-    name = model.name[len("body:"):]
-    if name not in shipped() or str(args.body) not in (name, model.name):
-        raise UsageError(f"--body {args.body} --friction: friction is built for the shipped bodies only "
-                         f"({', '.join(shipped())}), by name")
-    if getattr(args, "output", None) is not None or getattr(args, "plot", None) is not None:
-        raise UsageError("--body with --friction prints the run; --output and --plot are not built for it yet")
+def _friction_body_request(args, model, body, params, state, t_end, how, given, law) -> RunRequest:
+    """``--body FILE --friction MU``: any body file under exact Coulomb friction (the hybrid of
+    :mod:`verify.engine.hybrid`, ``body:NAME[@HASH]+coulomb``) or the smooth law (:mod:`verify.engine.smooth`,
+    ``body:NAME[@HASH]+smooth``); the engines resolve the registered name and hold the run to their guards (E + W,
+    and Jellett's integral for a sphere under the smooth law)."""
     eps = getattr(args, "slip_scale", None)
     if law == "smooth" and eps is None:
         raise UsageError("--friction-law smooth needs --slip-scale EPS (the slip scale, e.g. 1)")
@@ -198,9 +203,9 @@ def _friction_body_request(args, model, params, state, t_end, how, given, law) -
         raise UsageError("--slip-scale is the smooth law's; add --friction-law smooth")
     how += f"; {law} friction mu = {args.friction}" + (f", slip scale eps = {eps}" if eps is not None else "")
     given = {**given, "friction": args.friction, "friction_law": law, "slip_scale": eps, "velocity": args.velocity}
-    model_name = f"body:{name}+coulomb" if law == "coulomb" else f"body:{name}+smooth"
+    model_name = f"{model.name}+{law}"
     return RunRequest(model_name, "derived", params, state, t_end, args.friction, args.velocity, how, given,
-                      law=law, slip_scale=eps)
+                      law=law, slip_scale=eps, body_file=body)
 
 
 def _short(value) -> str:
@@ -216,13 +221,13 @@ def _short(value) -> str:
 
 def _start_value(text: str, what: str):
     """A stored start value (a decimal, an exact fraction such as 16720/33489, an expression) read exactly."""
-    from ..expressions import read_value
+    from ..expressions import read_value  # lazy: verify.expressions (7 ms) kept out of --help
 
     return read_value(text, what)
 
 
 def _same_number(a, b) -> bool:
-    from ..expressions import read_value
+    from ..expressions import read_value  # lazy: verify.expressions (7 ms) kept out of --help
 
     return read_value(str(a)) == read_value(str(b)) or float(read_value(str(a))) == float(read_value(str(b)))
 
@@ -234,8 +239,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
     :func:`verify.engine.hybrid.solve`.  Bad input (a state outside the domain, a parameter out of
     range) is a :class:`UsageError`; a run that fails with nothing to show is :class:`RunFailed`.
     """
-    from ..engine.errors import IntegrationError
-    from .progress import _Progress
+    from .progress import _Progress  # lazy: .progress (3 ms) kept out of --help
 
     precision = _precision(args.precision)
     tol = getattr(args, "tol", None)
@@ -247,7 +251,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
                              "(no --equations paper, --tol, --high-accuracy)")
         friction = _positive(request.friction, "--friction", "0.5 (a Coulomb coefficient > 0)")
         velocity = _velocity(request.velocity)
-        from ..engine import hybrid
+        from ..engine import hybrid  # lazy: heyoka, sympy (1 s) kept out of --help
 
         try:
             return hybrid.solve(request.model, request.t_end, request.state, request.params, friction=friction,
@@ -258,9 +262,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
             if err.trajectory is None or len(err.trajectory.t) == 0:
                 raise RunFailed(f"{err} ({err.outcome})") from None
             return err.trajectory, err
-    from models import get_model, sources
-
-    from ..engine.single import solve
+    from ..engine.single import solve  # lazy: heyoka, sympy (1 s) kept out of --help
 
     if request.velocity is not None:
         raise UsageError(f"--velocity is for the rolling-and-sliding bodies ({', '.join(COULOMB_NAMES)}); "
@@ -294,8 +296,7 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
 
 def _run_smooth(request: RunRequest, args, precision, tol):
     """The smooth-law run of a shipped body (:func:`verify.engine.smooth.solve`)."""
-    from ..engine import smooth
-    from ..engine.errors import IntegrationError
+    from ..engine import smooth  # lazy: heyoka, sympy (0.9 s) kept out of --help
 
     if request.equations != "derived" or tol is not None or getattr(args, "high_accuracy", False):
         raise UsageError("--friction-law smooth takes the derived equations at the precision's epsilon only "
@@ -303,7 +304,7 @@ def _run_smooth(request: RunRequest, args, precision, tol):
     friction = _positive(request.friction, "--friction", "0.3 (a friction coefficient > 0)")
     eps = _positive(request.slip_scale, "--slip-scale", "1 (the slip scale in R/s, > 0)")
     velocity = _velocity(request.velocity)
-    body = request.model[len("body:"):-len("+smooth")]
+    body = request.model[len(BODY_PREFIX):-len("+smooth")]  # NAME or NAME@HASH (models.bodies.resolve)
     try:
         return smooth.solve(body, request.t_end, request.state, request.params, friction=friction, slip_scale=eps,
                             velocity=velocity, precision=precision, n_eval=getattr(args, "_n_eval", 101)), None
@@ -311,31 +312,6 @@ def _run_smooth(request: RunRequest, args, precision, tol):
         raise UsageError(str(err)) from None
     except IntegrationError as err:
         raise RunFailed(f"{err} ({err.outcome})") from None
-
-
-def smooth_record(sol) -> dict:
-    """The JSON object of a smooth-law run: the end state, E + W and Jellett's drift, the slip."""
-    from models.smooth_friction import STATE_NAMES as SMOOTH_NAMES
-
-    p = sol.precision
-    return {"model": sol.model + "+smooth", "precision": p.name, "params": {k: p.to_json(v) for k, v in sol.params.items()},
-            "outcome": sol.outcome, "message": sol.message, "steps": sol.steps, "t": p.to_json(sol.t[-1]),
-            "state": {n: p.to_json(sol.y[i, -1]) for i, n in enumerate(SMOOTH_NAMES)},
-            "max_theta": float(max(float(v) for v in sol["theta"])), "height": p.to_json(sol.height[-1]),
-            "energy_plus_work_drift_in_eps": sol.energy_plus_work_drift_in_eps,
-            "jellett_drift_in_eps": sol.jellett_drift_in_eps}
-
-
-def smooth_text(record: dict) -> str:
-    lines = [f"{record['model']} ({record['precision']}), mu = {record['params']['mu']}, eps = {record['params']['eps']}: "
-             f"{record['outcome']} at t = {record['t']}"]
-    lines += [f"  {n:<9} {v}" for n, v in record["state"].items()]
-    lines.append(f"  max theta {record['max_theta']:.6g} rad, z_C at the end {record['height']}")
-    jellett = record["jellett_drift_in_eps"]
-    lines.append(f"  E + W drift: {record['energy_plus_work_drift_in_eps']:.3g} eps of E's term scale"
-                 + ("" if jellett is None else f"; Jellett's lambda: {jellett:.3g} eps of its term scale")
-                 + f"; {record['steps']} Taylor steps")
-    return "\n".join(lines)
 
 
 def _velocity(text):
@@ -372,8 +348,8 @@ def add_trajectory_parser(sub) -> None:
 
 
 def cmd_trajectory(args, session: Session) -> int:
-    from ..series.files import RunFileError, output_path
-    from ..series.plot import picture_path
+    from ..series.files import RunFileError, output_path  # lazy: numpy (0.25 s) kept out of --help
+    from ..series.plot import picture_path  # lazy: numpy (0.25 s) kept out of --help
 
     request = read_request(args)
     try:  # before the run: nothing is computed for a file that cannot be written
@@ -386,14 +362,17 @@ def cmd_trajectory(args, session: Session) -> int:
     _precision(args.precision)
     args._n_eval = n_eval
     sol, failure = run(request, args, session, n_eval, f"trajectory {request.model}")
-    from .output import _dumps, _not_ok, coulomb_record, coulomb_text, trajectory_record, _text
-
     hybrid = hasattr(sol, "phases")
     if request.law == "smooth":
+        from .friction_run import smooth_record, smooth_text  # lazy: sympy (0.8 s) kept out of --help
+
         record = smooth_record(sol)
         record["start"] = request.start
+        written = _keep(sol, request, out, picture)
+        record["files"] = [str(p) for p in written]
         session.emit(_dumps(record) if args.format == "json" else
-                     "\n".join([smooth_text(record), f"start       {request.start}"]))
+                     "\n".join([smooth_text(record), f"start       {request.start}"]
+                               + [f"wrote       {p}" for p in written] + [_next_step(args, request, out)]))
         return 0
     if hybrid:
         record = coulomb_record(sol, failure)
@@ -402,8 +381,6 @@ def cmd_trajectory(args, session: Session) -> int:
         if failure is not None:
             record["outcome"] = failure.outcome
         else:
-            from models import get_model
-
             reason = _not_ok(sol, request.body or get_model(request.model, request.equations))
             if reason is not None and record["outcome"] == "ok":
                 record["outcome"] = "failed:event_detection" if "domain" in reason else "failed:non_finite"
@@ -437,10 +414,17 @@ def _keep(sol, request: RunRequest, out, picture) -> list:
     """Write the run's file and picture (each atomically); returns the paths written."""
     if out is None and picture is None:
         return []
-    from ..series import run_columns, write_run
-    from ..series.plot import write_plot
+    from ..series import run_columns, write_run  # lazy: numpy (0.2 s) kept out of --help
+    from ..series.plot import write_plot  # lazy: numpy (0.2 s) kept out of --help
+    from .friction_run import body_meta, friction_columns  # lazy: sympy (0.5 s) kept out of --help
 
-    columns = run_columns(sol, {"start_chosen": request.start, "given": request.given})
+    meta = {"start_chosen": request.start, "given": request.given}
+    if request.body_file is not None:
+        meta["body"] = body_meta(request.body_file, request.given["body"])
+    if request.body_file is not None and request.friction is not None and request.body is None:
+        columns = friction_columns(sol, meta)  # a body's run with friction: the slip, E + W, C's velocity
+    else:
+        columns = run_columns(sol, meta)
     written = []
     if out is not None:
         written.append(write_run(columns, out))
@@ -451,8 +435,8 @@ def _keep(sol, request: RunRequest, out, picture) -> list:
 
 def _next_step(args, request: RunRequest, out) -> str:
     """One line pointing to what a person might do next with this run (the options as typed)."""
-    if "friction_law" in request.given:  # a body with friction: --output and --plot are not built for it
-        return "next        python -m verify tippe-top   (the tippe top under both laws, against its thresholds)"
+    if out is not None and "friction_law" in request.given:  # a body with friction: animate takes rolling runs
+        return f"next        python -m verify plot {out} --out run.png"
     if out is not None:
         return (f"next        python -m verify plot {out} --out run.png   |   "
                 f"python -m verify animate {out} --out run.gif")
@@ -461,7 +445,7 @@ def _next_step(args, request: RunRequest, out) -> str:
 
 def _typed(args) -> list:
     """The run's options as they were given (quoted for a shell where needed)."""
-    import shlex
+    import shlex  # lazy: shlex (2 ms) kept out of --help
 
     words = ["trajectory"] + ([args.model] if args.model else [])
     for option, value in (("--body", getattr(args, "body", None)), ("--start", args.start), ("--t-end", args.t_end), ("--friction", args.friction),

@@ -13,6 +13,8 @@
   (``through_grid``) for the studies;
 * :mod:`.invariants` -- the invariants along a run and their drifts;
 * :mod:`.conditioning` -- variational equations: how errors in the start grow;
-* :mod:`.lanes` -- the SIMD batch width;
+* :mod:`.ensemble` -- many runs of one model at once (:class:`Ensemble`, the batch road's front door);
+* :mod:`.lanes` -- the SIMD batch width and a model's lane system (:func:`compile_lanes`), parameters by name;
+* :mod:`.batch` -- SIMD lanes on threads, freezing events, per-run evaluation;
 * :mod:`.heyoka_log` -- heyoka's log lines collected instead of printed.
 """

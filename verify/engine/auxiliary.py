@@ -9,6 +9,7 @@ import heyoka as hy
 import numpy as np
 
 from . import integrators, segments
+from .compile import to_heyoka
 from .problem import Problem
 from .trajectory import End, IntegrationError
 from ..precision import Precision, parse_precision
@@ -107,6 +108,24 @@ class GridRun:
     reached: bool
     outcome: str
     rows: np.ndarray
+
+
+def sympy_system(states, time=None, parameters=()) -> list:
+    """A small system for :func:`through_grid` from sympy: ``states`` (name, symbol or None, right-hand side).
+
+    Each state's symbol (None: it appears on no right-hand side) becomes its variable, ``time`` (a
+    symbol, e.g. theta for a drift integrated with theta as the independent variable) heyoka's time,
+    and ``parameters[i]`` ``par[i]``; constants are refused as :func:`verify.engine.compile.to_heyoka`
+    refuses them.  The studies describe their auxiliary equations this way and never build heyoka
+    expressions themselves.
+    """
+    names = [name for name, _, _ in states]
+    variables = hy.make_vars(*names) if len(names) > 1 else [hy.make_vars(*names)]
+    mapping = {sym: var for (_, sym, _), var in zip(states, variables) if sym is not None}
+    if time is not None:
+        mapping[time] = hy.time
+    mapping.update({p: hy.par[i] for i, p in enumerate(parameters)})
+    return [(var, to_heyoka(rhs, mapping)) for var, (_, _, rhs) in zip(variables, states)]
 
 
 def through_grid(key, system, start, pars, grid, precision="double") -> GridRun:

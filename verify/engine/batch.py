@@ -8,7 +8,7 @@ maps (:mod:`verify.studies.maps`) are its users.
 * :func:`propagate_grid` runs every lane on a common output grid, ``chunk`` batches per ensemble
   call, and yields each chunk's results as :class:`Batch` objects with heyoka's log messages;
 * :func:`lane_failures` and :func:`alone` detect and isolate the lanes that failed;
-* :func:`per_run` evaluates a compiled function over the samples of many runs at once with the
+* :func:`per_lane` evaluates a compiled function over the samples of many runs at once with the
   bits of one call per run;
 * :func:`fastest_rate` and :func:`step_cap` (from :mod:`.problem`): the step cap, one radian of the fastest rate.
 
@@ -35,7 +35,9 @@ the chunking.
 from __future__ import annotations
 
 import copy
+import threading
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import ExitStack
 from dataclasses import dataclass
 from types import SimpleNamespace
 from typing import Iterator, Optional
@@ -43,7 +45,7 @@ from typing import Iterator, Optional
 import heyoka as hy
 import numpy as np
 
-from . import heyoka_log
+from . import call_paths, heyoka_log
 from .problem import fastest_rate, step_cap  # noqa: F401 - the step cap, as solve() caps its steps
 
 
@@ -96,8 +98,13 @@ class Freeze:
         return True
 
 
+def go_on(ta, d_sgn, lane) -> bool:
+    """Terminal-event callback of a bare baseline (verify.bench): nothing recorded, the batch runs on."""
+    return True
+
+
 def batch_system(system, events, lanes: Lanes, n_pars: int, batch_size: int, cooldown: float,
-                 state, default_pars, park=(), park_between=None, record=()):
+                 state, default_pars, park=(), park_between=None, record=(), freezing: bool = True):
     """A ``taylor_adaptive_batch`` template of ``system`` with freezing terminal events.
 
     Parameters
@@ -121,14 +128,18 @@ def batch_system(system, events, lanes: Lanes, n_pars: int, batch_size: int, coo
     park, park_between, record
         Where a frozen lane is parked, and what of its state at the event is kept (:class:`Freeze`);
         a record's parameter must sit below one that is read, as ``reason`` and ``t_stop`` do.
+    freezing : bool
+        False: the events' callback is :func:`go_on` (a bare baseline's: the same events, nothing frozen).
     """
-    t_events = [hy.t_event_batch(ex, direction=d, callback=Freeze(lanes, i + 1, park, park_between, record),
-                                 cooldown=cooldown) for i, (_, ex, d) in enumerate(events)]
+    t_events = [hy.t_event_batch(ex, direction=d, cooldown=cooldown,
+                                 callback=Freeze(lanes, i + 1, park, park_between, record) if freezing else go_on)
+                for i, (_, ex, d) in enumerate(events)]
     lanes_state = np.repeat(np.asarray(state, float)[:, None], batch_size, axis=1)
     pars = np.zeros((n_pars, batch_size))
     pars[: len(default_pars)] = np.asarray(default_pars, float)[:, None]
-    pars[lanes.alive] = 1.0
-    return hy.taylor_adaptive_batch(list(system), lanes_state, pars=pars, t_events=t_events or None)
+    if freezing:
+        pars[lanes.alive] = 1.0
+    return hy.taylor_adaptive_batch(list(system), lanes_state, pars=pars, t_events=t_events)
 
 
 def pad_lanes(n: int, batch_size: int) -> np.ndarray:
@@ -170,45 +181,74 @@ def propagate_grid(template, states, pars, grid, threads: int, chunk: Optional[i
     parameters, n_lanes a multiple of the template's batch size (:func:`pad_lanes`).  ``chunk``
     batches run per call (None: all at once), so that only their output is held at once.
 
-    Each thread copies the template once and reuses its copy for a contiguous share of the
-    batches (time, state, parameters and event cooldowns reset for each): heyoka's
-    ``ensemble_propagate_grid_batch`` copies the template for every batch, holding the GIL
-    (~1 ms for an integrator with Python event callbacks), which serialises the threads.  A
-    batch's result depends on its own lanes only, so the sharing changes no bit.
+    Each thread copies the template once and reuses its copy for the batches it takes from a
+    shared queue, in index order (time, state, parameters and event cooldowns reset for each):
+    heyoka's ``ensemble_propagate_grid_batch`` copies the template for every batch, holding the
+    GIL (~1 ms for an integrator with Python event callbacks), which serialises the threads; a
+    queue keeps both threads busy when batches cost unequal times (fixed shares left one idle).
+    Each thread calls heyoka along the path it found fastest (:mod:`.call_paths`).  A batch's
+    result depends on its own lanes only, so neither the sharing nor the path changes a bit.  The
+    next chunk is started before a chunk is yielded: it runs while the caller reduces this one.
     """
     bs = template.batch_size
     n_batches = states.shape[1] // bs
     chunk = n_batches if chunk is None else chunk
-    options = {}
-    if max_delta_t is not None:
-        options["max_delta_t"] = max_delta_t
-    if max_steps is not None:
-        options["max_steps"] = max_steps
     grid_lanes = np.ascontiguousarray(np.repeat(np.asarray(grid, float)[:, None], bs, axis=1))
     workers = max(1, int(threads))
     copies = [copy.deepcopy(template) for _ in range(workers)]
+    choosers: dict = {}  # per thread: which path is fast depends on the thread's stack (:mod:`.call_paths`)
+    failed = threading.Event()  # a worker that raised: the others stop taking batches
 
-    def share(worker: int, batches) -> list:
-        ta, out = copies[worker], []
-        for b in batches:
-            cols = slice(b * bs, (b + 1) * bs)
-            ta.set_time(0.0)
-            if ta.with_events:
-                ta.reset_cooldowns()
-            ta.state[:] = states[:, cols]
-            ta.pars[:] = pars[:, cols]
-            output = ta.propagate_grid(grid_lanes, **options)[-1]
-            local = SimpleNamespace(time=ta.time.copy(), state=ta.state.copy(), pars=ta.pars.copy(),
-                                    propagate_res=list(ta.propagate_res), batch_size=bs)
-            out.append(Batch(b, local, output))
+    def one(ta, chooser, b: int) -> Batch:
+        cols = slice(b * bs, (b + 1) * bs)
+        ta.set_time(0.0)
+        if ta.with_events:
+            ta.reset_cooldowns()
+        ta.state[:] = states[:, cols]
+        ta.pars[:] = pars[:, cols]
+        output = call_paths.timed_propagate_grid(chooser, ta, grid_lanes, max_delta_t, max_steps)[-1]
+        local = SimpleNamespace(time=ta.time.copy(), state=ta.state.copy(), pars=ta.pars.copy(),
+                                propagate_res=list(ta.propagate_res), batch_size=bs)
+        return Batch(b, local, output)
+
+    def share(worker: int, queue, lock) -> list:
+        out = []
+        chooser = choosers.setdefault(threading.get_ident(), call_paths.PathChooser())
+        while not failed.is_set():
+            with lock:
+                b = next(queue, None)
+            if b is None:
+                return out
+            try:
+                out.append(one(copies[worker], chooser, b))
+            except BaseException:
+                failed.set()
+                raise
         return out
 
+    def launch(pool, first: int, stack: ExitStack):
+        """Start the chunk from batch ``first`` on every worker; heyoka's messages collected until it ends."""
+        messages = stack.enter_context(heyoka_log.collect())
+        queue, lock = iter(range(first, min(first + chunk, n_batches))), threading.Lock()
+        return [pool.submit(share, worker, queue, lock) for worker in range(workers)], messages
+
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        for first in range(0, n_batches, chunk):
-            shares = np.array_split(np.arange(first, min(first + chunk, n_batches)), workers)
-            with heyoka_log.collect() as messages:
-                parts = list(pool.map(share, range(workers), shares))
-            yield [b for part in parts for b in part], list(messages)
+        firsts = list(range(0, n_batches, chunk))
+        stack, running = ExitStack(), None
+        try:
+            running = launch(pool, firsts[0], stack) if firsts else None
+            for k in range(len(firsts)):
+                futures, messages = running
+                parts = [f.result() for f in futures]
+                stack.close()  # this chunk's messages are complete
+                stack = ExitStack()
+                # the next chunk runs while the caller reduces this one
+                running = launch(pool, firsts[k + 1], stack) if k + 1 < len(firsts) else None
+                yield sorted((b for part in parts for b in part), key=lambda b: b.index), list(messages)
+        finally:  # a caller that stops early: the chunk under way ends inside its collection
+            for future in (running[0] if running else ()):
+                future.exception()
+            stack.close()
 
 
 def alone(template, grid, state_col, pars_col, max_delta_t=None, max_steps=None) -> tuple:
@@ -247,7 +287,7 @@ def lane_failure(batch: Batch, lane: int, lanes: Lanes, warned) -> Optional[tupl
 
 @dataclass(frozen=True)
 class ScalarTwin:
-    """A compiled function and its scalar build: evaluated by :func:`per_run`."""
+    """A compiled function and its scalar build: evaluated by :func:`per_lane`."""
 
     simd: object
     scalar: object
@@ -257,25 +297,41 @@ class ScalarTwin:
         return cls(hy.cfunc(outputs, variables), hy.cfunc(outputs, variables, batch_size=1))
 
 
-def per_run(fn: ScalarTwin, points: np.ndarray, pars: Optional[np.ndarray], lengths: np.ndarray) -> np.ndarray:
+def per_lane(fn: ScalarTwin, points: np.ndarray, pars: Optional[np.ndarray], lengths) -> np.ndarray:
     """``fn`` at the samples of many runs, bit for bit as one call per run would give them.
 
-    ``points`` (n_inputs, sum(lengths)) holds the runs' samples one run after the other.  heyoka's
-    compiled functions evaluate whole SIMD groups of points vectorised and the points left over
-    one by one with scalar code, whose transcendental functions can differ in the last bit; so each
-    run's whole groups are evaluated together by the SIMD build and every run's leftover points by
-    the scalar build, as a call per run would.
+    ``points`` (n_inputs, lanes, n_samples) holds lane l's samples in order, its run the first
+    ``lengths[l]``; ``pars`` (n_pars, lanes) its parameters (or None).  heyoka's compiled
+    functions evaluate whole SIMD groups of points vectorised and the points left over one by one
+    with scalar code, whose transcendental functions can differ in the last bit; and a SIMD group's
+    values can depend on the whole group (the vector sine and cosine reduce their arguments another
+    way when one of the group is NaN, infinite or beyond ~1e15).  So each lane's samples are padded
+    to whole groups (its last sample repeated), no group holds two lanes, and every point is evaluated
+    by the SIMD build in one call: a run's whole groups are then the groups of a call on that run
+    alone, and its leftover points -- its last ``length % width``, which such a call gives to scalar
+    code -- are evaluated again by the scalar build.
+
+    Returns (n_outputs, lanes, n_samples); the values past a run's length belong to no run.
     """
+    n_in, lanes, n_samples = points.shape
     lengths = np.asarray(lengths, dtype=np.int64)
     width = int(fn.simd.batch_size)
-    starts = np.cumsum(lengths) - lengths
-    position = np.arange(int(lengths.sum())) - np.repeat(starts, lengths)
-    tail = position >= np.repeat(lengths // width * width, lengths)
-    out = np.empty((int(fn.simd.nouts), points.shape[1]))
-    for build, cols in ((fn.simd, ~tail), (fn.scalar, tail)):
-        if not cols.any():
-            continue
-        kwargs = {} if pars is None or build.nparams == 0 else {
-            "pars": np.ascontiguousarray(pars[: build.nparams][:, cols])}
-        out[:, cols] = build(np.ascontiguousarray(points[:, cols]), **kwargs)
-    return out
+    row = n_samples + (-n_samples) % width  # a lane's samples in whole groups
+    if row == n_samples and points.flags.c_contiguous:
+        flat = points.reshape(n_in, lanes * row)  # no copy
+    else:
+        lanes_padded = np.empty((n_in, lanes, row))
+        lanes_padded[:, :, :n_samples] = points
+        lanes_padded[:, :, n_samples:] = points[:, :, n_samples - 1:]
+        flat = lanes_padded.reshape(n_in, lanes * row)
+    kwargs = {}
+    if pars is not None and fn.simd.nparams:
+        kwargs = {"pars": np.repeat(np.ascontiguousarray(pars[: fn.simd.nparams], dtype=float), row, axis=1)}
+    out = fn.simd(flat, **kwargs)
+    tails = lengths % width
+    tail = np.repeat(np.arange(lanes) * row + lengths - tails, tails) + (
+        np.arange(int(tails.sum())) - np.repeat(np.cumsum(tails) - tails, tails))
+    if tail.size:
+        scalar = {"pars": np.ascontiguousarray(kwargs["pars"][: fn.scalar.nparams, tail])} if kwargs else {}
+        out[:, tail] = fn.scalar(np.ascontiguousarray(flat[:, tail]), **scalar)
+    return out.reshape(out.shape[0], lanes, row)[:, :, :n_samples]

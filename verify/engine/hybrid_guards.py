@@ -20,6 +20,10 @@ passed its guard; otherwise it ends with one of these outcomes (status 1, the co
   (:func:`models.coulomb.painleve_margin`): the rigid body with Coulomb friction has no unique motion
   from there; possible only for mu above :func:`models.coulomb.critical_friction`.
 
+The checks of a phase and of each switch (:func:`check_phase`, :func:`check_sliding_start`,
+:func:`check_stick`, :func:`check_slips`) read the run's compiled functions
+(:mod:`verify.engine.hybrid_system`) and raise through :func:`fail`.
+
 The energy balance holds whatever the motion's conditioning: E + W is conserved by the exact flow of
 every phase, so an error committed in one step moves it once and is carried, not amplified; the
 bound grows only with the number of places an error is committed (steps and switches).
@@ -28,6 +32,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from models import coulomb
+
+from .compile import friction_function
+from .hybrid_system import DIRECTION, SLIP, WORK, evaluate, rolling_model, slip_direction, term_scale
+from .problem import max_step
 from .trajectory import IntegrationError
 
 OUTSIDE_DOMAIN = "failed:outside_domain"
@@ -141,3 +150,108 @@ def check_switch(run, name: str, value, bound, t, state, what: str) -> None:
         raise fail(run, SWITCH_CONSTRAINT, f"{run.name}: the {name} at t = {float(t):.9g} does not hold its "
                                             f"constraint: {what} = {float(value):.3g}, allowed |.| <= "
                                             f"{float(bound):.3g}", t, state)
+
+
+# --- the checks of a run's phases and switches ----------------------------------------------------------------
+
+def check_phase(run, kind, times, thetas, thetadots, ended, last) -> None:
+    """Domain at every output, N = 0 where the phase ended at contact_lost, then E + W so far (``last``:
+    the phase's last state, the eight or the sliding eleven)."""
+    check_domain(run, kind, times, thetas, *run.theta_bounds, ended, thetadots)
+    if ended == "contact_lost":
+        last = run.prec.array(list(last))
+        if kind == "sliding":
+            def normal(y):
+                return evaluate(run.c.sliding_function, y, run.par_vector)[1:2]
+        else:
+            friction = friction_function(rolling_model(run.name), run.prec).function
+
+            def normal(y):
+                return evaluate(friction, y, run.par_vector[:-1])[:1]
+        check_constraint(run, "contact_lost event", normal, last, times[-1], "N / (M g)")
+    check_balance(run)
+
+
+def state_rates(run, y):
+    """d/dt of a state: the sliding rows' (the eight's rates at s = 0 with alpha the slip's direction are the
+    rolling ones where mu_req = mu; alpha' is 0/0 there and not read)."""
+    prec = run.prec
+    full = prec.array(list(y) + [prec.zero(), prec.zero(), run.work_so_far]) if len(y) == 8 else y
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rates = evaluate(run.c.rhs_function, full, run.par_vector)
+    rates[DIRECTION] = prec.zero()
+    return rates[: len(y)]
+
+
+def check_constraint(run, name, function, y, t, what, rates=None) -> None:
+    """|function(y)| within :data:`SWITCH_ULPS` of what one ulp moves it (:func:`one_ulp_sensitivity`)."""
+    rates = state_rates(run, y) if rates is None else rates
+    cap = max_step(y[:8], run.pars, run.prec)
+    bound = SWITCH_ULPS * one_ulp_sensitivity(function, y, rates, t, cap, run.prec)
+    value = np.asarray(function(y))
+    check_switch(run, name, float(np.max(np.abs(value))), bound, t, y, what)
+
+
+def check_sliding_start(run, t0, y0, onset) -> None:
+    """A sliding phase starts inside the domain, with s >= 0, with Painleve's margin P > 0, and, where it
+    began at s = 0 (``onset``: time, state), with the E + W of its onset (series or Taylor start)."""
+    prec, c = run.prec, run.c
+    begun = t0 if onset is None else onset[0]
+    check_domain(run, "sliding", [t0], [y0[0]], *run.theta_bounds, None, recorded=False)
+    if onset is not None:
+        before, after = (evaluate(c.sliding_function, prec.array(list(y)), run.par_vector) for y in (onset[1], y0))
+        scale = max(term_scale(before, 2), term_scale(after, 2))
+        gap = (after[0] + y0[WORK]) - (before[0] + onset[1][WORK])
+        check_switch(run, "onset of slip", gap, BALANCE_PER_SWITCH * prec.eps * scale, begun, y0,
+                     f"E + W at t = {float(t0):.9g} (its start) minus E + W at the onset")
+    if not y0[SLIP] >= 0:
+        where = "sliding phase" if onset is None else "onset of slip"
+        raise fail(run, SWITCH_CONSTRAINT, f"{run.name}: the {where} from t = {float(begun):.9g} starts with a slip "
+                                           f"speed {float(y0[SLIP]):.3g} < 0", t0, y0)
+    margin = evaluate(c.check_function, y0, run.par_vector)[0]
+    if not margin > 0:
+        raise fail(run, PAINLEVE_JAM, jam_message(run, begun, y0, "starts at", margin), begun, y0)
+
+
+def jam_message(run, t, y, where, margin) -> str:
+    """What a sliding phase that ``where`` ('reaches', 'starts at') Painleve's jam at (t, y) says."""
+    critical = coulomb.critical_friction(run.name, {k: str(v) for k, v in run.pars.items()})
+    return (f"{run.name}: the sliding phase {where} Painleve's jam at t = {float(t):.9g} (margin P = "
+            f"{float(margin):.3g} at theta = {float(y[0]):.6g}; N and the accelerations grow like 1 / P): with "
+            f"Coulomb friction mu = {float(run.mu):.6g}, above this body's critical {critical:.6g}, the rigid "
+            "body has no unique smooth motion from there")
+
+
+def check_stick(run, t, raw) -> None:
+    """At a stick the sliding state's v_C (its slip s still in it, ``raw``) is the rolling model's no-slip v_C."""
+    def slip(y):  # v_C of the sliding state minus the rolling model's no-slip v_C: the contact's slip
+        values = evaluate(run.c.check_function, y, run.par_vector)
+        return [values[1] - values[3], values[2] - values[4]]
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rates = evaluate(run.c.rhs_function, raw, run.par_vector)
+    if raw[SLIP] == 0:  # alpha' is 0/0; alpha does not enter v_C at s = 0
+        rates[DIRECTION] = run.prec.zero()
+    check_constraint(run, "stick", slip, raw, t, "v_C - v_C(no slip) (the contact's slip, R/s)", rates)
+
+
+def check_slips(run, t, y8) -> None:
+    """At a slips event the rolling motion needs mu_req = mu."""
+    friction = friction_function(rolling_model(run.name), run.prec).function
+
+    def excess(y):
+        return evaluate(friction, y, run.par_vector[:-1])[1:] - run.mu
+
+    y8 = run.prec.array(list(y8))
+    check_constraint(run, "slips event", excess, y8, t, "mu_req - mu", rates_at_slip(run, y8))
+
+
+def rates_at_slip(run, y8):
+    """The eight's rates where mu_req = mu: the sliding rows' at s = 0 with alpha the direction of -F_req
+    (the friction is then the one rolling needs, so the accelerations are the rolling ones)."""
+    prec = run.prec
+    alpha = prec.number(slip_direction(run.c, y8, run.par_vector))
+    full = prec.array(list(y8) + [prec.zero(), alpha, run.work_so_far])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rates = evaluate(run.c.rhs_function, full, run.par_vector)
+    return rates[:8]

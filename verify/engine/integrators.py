@@ -25,6 +25,10 @@ from contextlib import contextmanager
 
 import heyoka as hy
 
+from models.symbols import theta
+
+from .compile import symbol_map, to_heyoka
+
 #: Idle integrators kept per key (more are copied when more threads run at once, then dropped).
 IDLE_PER_KEY = 4
 
@@ -95,9 +99,6 @@ def for_extended(compiled, extra_states: tuple, theta_stop: bool):
     through ``par[len(model.parameters)]`` (the parameter after the model's own).  Tolerance
     epsilon, the model's terminal events first (:mod:`.single`, ``propagate_in_turns``).
     """
-    from .compile import symbol_map, to_heyoka
-    from models.symbols import theta
-
     prec, model = compiled.precision, compiled.model
     key = ("extended", model, prec, tuple((name, str(rhs)) for name, rhs in extra_states), bool(theta_stop))
 

@@ -38,6 +38,7 @@ import sympy as sp
 from models import smooth_friction as sf
 from models.base import Model
 from models.coulomb import mu as MU
+from models.symbols import phi
 
 from . import heyoka_log, integrators
 from .auxiliary import _in_turns
@@ -164,8 +165,6 @@ def compiled(body, precision: Precision) -> _Compiled:
 
 def _nodal_velocity(sm):
     """C's horizontal velocity along (e1, h), read back from (x', y'): (v1, v2) = R(-phi) (x', y')."""
-    from models.symbols import phi
-
     xdot, ydot = sm.cm_velocity_xy
     return (sp.simplify(xdot * sp.cos(phi) + ydot * sp.sin(phi)), sp.simplify(-xdot * sp.sin(phi) + ydot * sp.cos(phi)))
 

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -99,13 +100,13 @@ class Trajectory:
     # --- the run as a time series (verify.series) -------------------------------------------------
     def columns(self) -> dict:
         """Every column of the run by name (t, the state, invariants, N/(Mg), mu_req ...): :mod:`verify.series`."""
-        from ..series import run_columns
+        from ..series import run_columns  # lazy: verify.series (10 ms) only to save or draw, not for 'threshold'
 
         return dict(run_columns(self).values)
 
     def save(self, path, **meta):
         """Write the run to ``path`` as CSV, JSON or NPZ (by its extension), atomically, with units and metadata."""
-        from ..series import run_columns, write_run
+        from ..series import run_columns, write_run  # lazy: as columns()
 
         return write_run(run_columns(self, meta), path)
 
@@ -119,22 +120,20 @@ class Trajectory:
 
     def plot(self, path):
         """Draw the run (path and contact trace, theta, phi, omega3, energy, N/(Mg)) into a PNG, SVG or PDF."""
-        from ..series import run_columns
-        from ..series.plot import write_plot
+        from ..series import run_columns  # lazy: as columns()
+        from ..series.plot import write_plot  # lazy: as columns()
 
         return write_plot(run_columns(self), path)
 
     def animate(self, path, label=None, **options):
         """The body rolling in 3D into a GIF, MP4 or HTML (:func:`verify.animation.animate` and its options)."""
-        from ..animation import AnimationRun, animate
+        from ..animation import AnimationRun, animate  # lazy: verify.animation (14 ms) only to animate
 
         run = AnimationRun.from_solution(label or self.model, self.model, self,
                                          {k: float(v) for k, v in self.params.items()})
         return animate([run], path, **options)
 
     def _save_as(self, path, suffix: str, meta: dict):
-        from pathlib import Path
-
         if Path(path).suffix.lower() != suffix:
             raise ValueError(f"{str(path)!r}: a {suffix} file name is expected (save() picks the format by extension)")
         return self.save(path, **meta)

@@ -30,10 +30,13 @@ import mpmath
 import numpy as np
 import sympy as sp
 
+from models import get_model
 from models.base import Model
 from models.symbols import STATE, STATE_NAMES
 
 from ..precision import Precision
+from .compile import compile_model, symbol_map, to_heyoka
+from .invariants import friction_required
 
 #: Why a start is refused (``InvalidStart.reason``).
 REASONS = ("unknown_name", "not_a_number", "non_finite", "parameter_range", "parameter_relation", "shape",
@@ -333,8 +336,6 @@ def validate(model: Model, state_values, params, precision: Precision, compiled=
     problem = first_problem(model, y0[:, None], None, shown)
     if problem is None:
         if compiled is None:
-            from .compile import compile_model
-
             compiled = compile_model(model, precision)
         rows = _invariant_rows(compiled, y0[:, None].copy(), pars)  # the invariants, then N/(Mg)
         overflow = _overflowing_invariant(model, rows)
@@ -367,9 +368,6 @@ def friction(model: Model, value, events: bool, precision: Precision):
 
 def _slip_problem(model: Model, y0, pars: dict, friction, precision: Precision):
     """('slips', message) as a problem if the start needs mu_req >= ``friction``, else None."""
-    from .compile import compile_model
-    from .invariants import friction_required
-
     need = friction_required(compile_model(model, precision), y0[:, None].copy(), pars)[0]
     if need < friction:
         return None
@@ -427,10 +425,6 @@ def flag(name: str, value) -> bool:
 @lru_cache(maxsize=None)
 def normal_force_function(model_name: str):
     """A double-precision cfunc of N/(Mg) over columns (state rows, then the model's parameters), or None."""
-    from models import get_model
-
-    from .compile import symbol_map, to_heyoka
-
     model = get_model(model_name)
     if model.normal_force is None:
         return None

@@ -31,6 +31,7 @@ from fractions import Fraction
 from flint import arb, ctx, fmpq
 
 from .enclosure import NoEnclosure
+from .equations import exact
 from .lohner import LohnerExpansion, Parallelepiped
 from .taylor import TaylorExpansion
 
@@ -111,8 +112,6 @@ def enclose(field, start: list, times: list, *, order: int = 24, prec: int = 320
     progress : callable, optional
         Called as ``progress(t, enclosure_so_far)`` after each output time.
     """
-    from .equations import exact
-
     if method not in ("direct", "lohner"):
         raise ValueError(f"unknown method {method!r}")
     remainder_bits = prec if remainder_bits is None else remainder_bits

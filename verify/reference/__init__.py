@@ -17,9 +17,11 @@ import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
+from ..precision import parse_precision
 from .cases import ReferenceCase, case, cases
 from .check import CHECK_PRECISIONS, CaseCheck, check_case, render_checks
 from .make import HIGH, LOW, run_case
+from .proved import load_proofs
 from .store import DIRECTORY, case_record, load_set, read_case, write_case, write_set
 
 
@@ -32,8 +34,6 @@ def make_set(names=None, jobs: int = 2, directory: Path = DIRECTORY, low: str = 
     README are refreshed from the files on disk); without, the whole set is rewritten.
     Returns the records.
     """
-    from ..precision import parse_precision
-
     chosen = [case(n) for n in names] if names else list(cases())
     lo, hi = parse_precision(low), parse_precision(high)
     if not (lo.is_mpfr and hi.is_mpfr and lo.bits < hi.bits):
@@ -68,8 +68,6 @@ def check_set(precision: str = "double", names=None, directory: Path = DIRECTORY
     if precision not in CHECK_PRECISIONS and not (bits.isdigit() and 64 <= int(bits) <= 512):
         raise ValueError(f"--precision {precision!r}; allowed: {', '.join(CHECK_PRECISIONS)} or mp:BITS "
                          "(64 <= BITS <= 512: an MPFR run measured against the agreed digits and the proved balls)")
-    from .proved import load_proofs
-
     proofs = load_proofs(directory)
     out = []
     for record in load_set(directory, names):

@@ -25,7 +25,8 @@ import sympy as sp
 
 from models import get_model
 from models.common import PAPER_G
-from models.symbols import phidot, psidot, theta, thetadot
+from models.symbols import STATE, STATE_NAMES, phidot, psidot, theta, thetadot
+from verify.standard import STANDARD_STATES
 
 DIGITS = 40  # digits written for computed initial values (beyond the 128-bit run's 38.5)
 
@@ -154,8 +155,6 @@ _HALF_PI = sp.pi / 2
 
 
 def _standard(model: str) -> dict:
-    from verify.standard import STANDARD_STATES
-
     return dict(STANDARD_STATES[model])
 
 
@@ -259,6 +258,11 @@ def _cases() -> tuple:
         ReferenceCase("oblate-ellipsoid-1", "body:oblate-ellipsoid", {"theta": "0.8", "phidot": "3", "psidot": "15"},
                       "1", 32, "wild", "body file models/bodies/oblate-ellipsoid.toml",
                       "a uniform oblate ellipsoid of revolution (1 x 1/2) rolling with nutation"),
+        ReferenceCase("tippe-top-coulomb-1", "body:tippe-top", {"theta": "0.1", "psidot": "200"}, "1", 32, "wild",
+                      "body file models/bodies/tippe-top.toml; the start of the tippe-top study (docs/tippe-top.md)",
+                      "the tippe top spun at 200 s^-1 about its axis tilted 0.1 rad, C at rest, on a table with exact "
+                      "Coulomb friction mu = 0.3: the contact slides, sticks near t = 0.024 and the top rolls (it "
+                      "does not turn over)", friction="0.3", velocity=("0", "0")),
     )
 
 
@@ -268,8 +272,6 @@ COIN = {"I1": "301/1200", "I3": "1/2", "h": "1/20"}
 
 def rolling_velocity(model_name: str, state: dict, params: dict) -> tuple:
     """The centre of mass's horizontal velocity (exact sympy) that rolling without slipping sets at ``state``."""
-    from models.symbols import STATE, STATE_NAMES
-
     model = get_model(model_name)
     subs = {p.symbol: sp.Rational(params[p.name]) if p.name in params else p.default for p in model.parameters}
     subs.update({s: sp.Rational(state.get(n, "0")) for s, n in zip(STATE, STATE_NAMES)})

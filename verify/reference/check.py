@@ -42,8 +42,10 @@ import sympy as sp
 
 from models.symbols import STATE_NAMES
 
+from ..engine.hybrid import solve as solve_hybrid
 from ..engine.single import solve
 from ..precision import parse_precision
+from ..engine.hybrid_run import grid_rows, switch_kinds
 from .make import equations_fingerprint
 from .store import reduced_scale
 
@@ -149,9 +151,6 @@ def _hybrid_run(record: dict, values: dict, prec):
 
     A run that switches differently from the reference (another sequence of rolling and sliding) fails
     by name: its values would be compared with another motion's."""
-    from ..engine.hybrid import solve as solve_hybrid
-    from .coulomb_runs import grid_rows, switch_kinds
-
     friction = record["friction"]
     params = {k: v for k, v in values.items() if k != "mu"}
     sol = solve_hybrid(friction["model"], record["t_end"], record["initial_state"], params,

@@ -27,9 +27,11 @@ from dataclasses import dataclass
 import mpmath
 import sympy as sp
 
-from models.symbols import STATE_NAMES
+from models import get_model
+from models.symbols import STATE, STATE_NAMES
 
 from ..engine.hybrid import solve as solve_hybrid
+from ..engine.hybrid_run import grid_rows, switch_kinds
 from ..precision import parse_precision
 from .cases import ReferenceCase
 
@@ -66,26 +68,6 @@ def solve_case(c: ReferenceCase, precision, times=None, state=None, params=None,
                         t_eval=times)
 
 
-def grid_rows(sol, grid: list, prec) -> list:
-    """The index in the run's outputs of each grid time (its first output at that time: a switch time
-    appears twice, the end of one phase and the start of the next)."""
-    wanted = [prec.number(g) for g in grid]
-    rows, j = [], 0
-    for g in wanted:
-        while j < len(sol.t) and sol.t[j] < g:
-            j += 1
-        if j == len(sol.t) or sol.t[j] != g:
-            raise RuntimeError(f"the hybrid run has no output at the grid time {float(g):.9g} (it stopped at "
-                               f"{float(sol.t[-1]):.9g}: {sol.outcome})")
-        rows.append(j)
-    return rows
-
-
-def switch_kinds(sol) -> list:
-    kinds = [ph.kind for ph in sol.phases]
-    return [f"{a} -> {b}" for a, b in zip(kinds, kinds[1:])]
-
-
 def run_case(c: ReferenceCase, precision: str) -> HybridRun:
     """Integrate Coulomb case ``c`` at ``precision`` on its grid; raise unless it reaches t_end."""
     p = parse_precision(precision)
@@ -108,9 +90,6 @@ def run_case(c: ReferenceCase, precision: str) -> HybridRun:
 def cm_velocity(c: ReferenceCase, sol, rows: list, p) -> tuple:
     """C's horizontal velocity at the outputs ``rows`` as text at precision ``p``: the rolling model's no-slip
     velocity at the state plus the slip s (cos alpha, sin alpha) (paper Eq. 7 with u = v_C + omega x r_P)."""
-    from models import get_model
-    from models.symbols import STATE
-
     model = get_model(c.model)
     params = c.exact_params
     subs = {q.symbol: params.get(q.name, q.default) for q in model.parameters}

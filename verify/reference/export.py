@@ -21,6 +21,7 @@ from pathlib import Path
 
 import mpmath
 
+from models.catalogue import entry
 from models.symbols import STATE_NAMES
 
 from ..provenance import writable_folder, write_atomic
@@ -66,8 +67,6 @@ def euler_columns(record: dict) -> dict:
 
 def column_units(record: dict, names) -> dict:
     """The unit of each exported column (:mod:`verify.series.columns`' units, form (b)'s added)."""
-    from models.catalogue import entry
-
     length = entry(record["model"]["name"]).length_unit
     units = state_units(length)
     units.update({n: "1" for n in MATRIX_ENTRIES + QUATERNION})

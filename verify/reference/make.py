@@ -17,7 +17,7 @@ from functools import lru_cache
 import mpmath
 import sympy as sp
 
-from models import get_model
+from models import coulomb, get_model
 from models.symbols import STATE, STATE_NAMES
 
 from ..engine.conditioning import sensitivities
@@ -25,6 +25,7 @@ from ..engine.single import solve
 from ..precision import parse_precision
 from .cases import ReferenceCase, case
 from .agreement import agree
+from .coulomb_runs import conditioning as hybrid_conditioning, run_case as run_hybrid
 
 LOW, HIGH = "mp:128", "mp:256"
 FINGERPRINT_STATES = (
@@ -52,8 +53,6 @@ def run_case(name: str, precision: str) -> Run:
     A Coulomb case is the hybrid's run (:func:`verify.reference.coulomb_runs.run_case`, a ``HybridRun``)."""
     c = case(name)
     if c.hybrid:
-        from .coulomb_runs import run_case as run_hybrid
-
         return run_hybrid(c, precision)
     p = parse_precision(precision)
     sol = solve(c.model, c.t_end, c.state, c.exact_params, precision=p, t_eval=c.grid())
@@ -116,8 +115,6 @@ def _fingerprint(model_name: str) -> str:
 
 
 def _coulomb_fingerprint(model_name: str) -> str:
-    from models import coulomb
-
     rolling, sliding, params = coulomb.body(model_name)
     exprs = list(sliding.rhs) + [sliding.energy, sliding.normal_force]
     f = sp.lambdify(list(coulomb.SLIDING_STATE) + [p.symbol for p in params], exprs, "mpmath")
@@ -134,8 +131,6 @@ def _coulomb_fingerprint(model_name: str) -> str:
 def conditioning(c: ReferenceCase) -> dict:
     """Row sums of |Phi(t, 0)| and the parameter terms on the grid (t > 0), per component."""
     if c.hybrid:
-        from .coulomb_runs import conditioning as hybrid_conditioning
-
         return hybrid_conditioning(c)
     times = [float(t) for t in c.grid()[1:]]
     R, P = sensitivities(c.model, times, c.state, c.exact_params)

@@ -28,13 +28,17 @@ from decimal import Decimal
 from fractions import Fraction
 from pathlib import Path
 
+import flint
 from flint import arb, ctx
 
 from models.symbols import STATE_NAMES
 
 from ..provenance import source_commit, versions, write_atomic
 from .agreement import digits_of
-from .store import DIRECTORY, file_sha256, read_index, read_json
+from ..proof.case import case_problem
+from ..proof.integrator import enclose
+from .make import equations_fingerprint
+from .store import DIRECTORY, file_sha256, read_case, read_index, read_json
 
 FORMAT = "rolling-verify proved enclosures, format 1"
 INDEX_FORMAT = "rolling-verify proved enclosures index, format 1"
@@ -80,9 +84,6 @@ def prove_case(record: dict, *, directory: Path = DIRECTORY, budget: float = mat
     Returns the proof record written to ``proved/<case>.json``.  The budget is wall-clock
     seconds for this call; at the first grid time past it the run stops and writes.
     """
-    from ..proof.case import case_problem
-    from ..proof.integrator import enclose
-
     settings = dict(settings or DEFAULT_SETTINGS)
     name = record["name"]
     if "friction" in record:
@@ -95,8 +96,6 @@ def prove_case(record: dict, *, directory: Path = DIRECTORY, budget: float = mat
     if len(grid) < 2:
         raise ValueError(f"--until {float(stop):g}: before {name}'s first grid time after 0 ({record['grid'][1]} s); allowed: "
                          "a time at or after it")
-    from .make import equations_fingerprint
-
     if record["model"]["equations_sha256"] != equations_fingerprint(record["model"]["name"]):
         raise ValueError(f"{name}: the model's equations changed since the case was made (equations_sha256 "
                          "differs); run 'python -m verify reference --make' first")
@@ -160,8 +159,6 @@ def _new_proof(record: dict, case_file: Path, settings: dict) -> dict:
 
 
 def _versions() -> dict:
-    import flint
-
     return {**versions(), "python-flint": flint.__version__}
 
 
@@ -364,8 +361,6 @@ def _agreed_zero(column: dict, index: int) -> bool:
 
 def write_summary(directory: Path = DIRECTORY) -> dict:
     """Rewrite ``proved/index.json`` and ``proved/README.md`` from the proof files on disk."""
-    from .store import read_case
-
     proofs = load_proofs(directory)
     rows = []
     for name, items in proofs.items():

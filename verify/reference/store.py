@@ -31,6 +31,7 @@ from models.symbols import STATE_NAMES
 
 from ..provenance import source_commit, versions, write_atomic
 from .cases import ReferenceCase
+from .coulomb_runs import check_same_switches
 from .make import HIGH, LOW, Run, agreed_columns, conditioning, equations_fingerprint, predicted_digits
 
 # the readers (and the set's place and formats) are json only, shared with the scorer (verify.scoring.casefiles)
@@ -96,8 +97,6 @@ def case_record(c: ReferenceCase, low: Run, high: Run, low_bits: int, high_bits:
 def coulomb_blocks(c: ReferenceCase, low, high, low_bits: int, high_bits: int) -> dict:
     """The keys a Coulomb case adds: ``friction`` (the law, mu, the start's CM velocity), ``phases`` (rolling
     or sliding at each grid time) and ``switches`` (their kinds, and their times agreed like any value)."""
-    from .coulomb_runs import check_same_switches
-
     check_same_switches(low, high)
     times = agreed_columns({"t": low.switch_times}, {"t": high.switch_times}, low_bits, high_bits)["t"]
     return {

@@ -24,7 +24,7 @@ import json
 import platform
 from pathlib import Path
 
-from ..provenance import ROOT, cpu_model
+from ..provenance import ROOT, cpu_model, versions
 
 PACKAGES = ("models", "verify")
 
@@ -112,8 +112,7 @@ def environment() -> dict:
     """Versions and machine: part of every key.  The SIMD width is the one the batch runs use
     (:func:`verify.engine.lanes.simd_width`, which ``VERIFY_SIMD_WIDTH`` overrides): results
     differ in the last bits between widths."""
-    from ..engine.lanes import simd_width
-    from ..provenance import versions
+    from ..engine.lanes import simd_width  # lazy: heyoka (0.7 s) kept out of the workers' start-up (via .runner)
 
     return {"versions": _versions(versions), "machine": platform.machine(), "processor": cpu_model(),
             "simd_width": simd_width()}

@@ -11,6 +11,8 @@ from contextlib import contextmanager
 
 import numpy as np
 
+from ..claims import simulations
+from ..claims.simulations import disk, hurricane, ring, runs
 from ..studies.friction import run_friction
 
 
@@ -23,8 +25,6 @@ def recorded_runs():
     and after, so every figure run is made (and recorded) here, never taken from an earlier
     evaluation in the same process.
     """
-    from verify.claims.simulations import disk, hurricane, ring, runs
-
     def clear():
         for module in (runs, disk, ring, hurricane):
             for obj in list(vars(module).values()):
@@ -57,15 +57,11 @@ def _matches(data, sol) -> bool:
 
 def figure_claims(figure: int) -> list:
     """The simulation claims of paper figure ``figure`` (their ids are fig-N or fig-N-...)."""
-    from verify.claims import simulations
-
     return [c for c in simulations.claims() if c.id == f"fig-{figure}" or c.id.startswith(f"fig-{figure}-")]
 
 
 def figure_numbers() -> tuple:
     """The paper figures the simulation claims draw."""
-    from verify.claims import simulations
-
     return tuple(sorted({int(c.id.split("-")[1]) for c in simulations.claims()}))
 
 

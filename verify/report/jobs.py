@@ -12,6 +12,7 @@ mechanism and quad reference case.
 """
 from __future__ import annotations
 
+import importlib
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -45,14 +46,14 @@ class JobOutput:
 
 def registry() -> list:
     """Every job of the report, in the order the report presents their results."""
-    from ..claims import SECTION_MODULES
-    from ..reference.proved import proved_directory
-    from ..reference.store import DIRECTORY, read_index
-    from ..studies.conservation import conservation_models
-    from ..studies.retrograde import MECHANISMS
-    from ..studies.summary import MAPS, THRESHOLD_CASES
+    from ..claims import SECTION_MODULES  # lazy: main process only; the workers import this module
+    from ..reference.proved import proved_directory  # lazy: main process only; the workers import this module
+    from ..reference.store import DIRECTORY, read_index  # lazy: main process only; the workers import this module
+    from ..studies.conservation import conservation_models  # lazy: main process only; the workers import this module
+    from ..studies.retrograde import MECHANISMS  # lazy: main process only; the workers import this module
+    from ..studies.summary import MAPS, THRESHOLD_CASES  # lazy: main process only; the workers import this module
 
-    from ..claims.base import PAPER_FILE
+    from ..claims.base import PAPER_FILE  # lazy: main process only; the workers import this module
 
     jobs = [Job(f"claims/{m}", "claims_job", (m,), (f"verify.claims.{m}", "verify.report.claim_records",
                                                    "verify.report.figures"), (str(PAPER_FILE),)) for m in SECTION_MODULES]
@@ -69,6 +70,8 @@ def registry() -> list:
     jobs += friction_jobs()
     jobs.append(Job("bodies", "bodies_job", (), ("verify.studies.bodies",),
                     tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
+    jobs.append(Job("bodies/thresholds", "body_thresholds_job", (), ("verify.studies.body_thresholds",),
+                    tuple(str(p) for p in sorted(_bodies_directory().glob("*.toml")))))
     jobs.append(Job("tippe-top", "tippe_top_job", (), ("verify.studies.tippe.report",),
                     tuple(str(p) for p in _tippe_files())))
     index = read_index()
@@ -84,7 +87,7 @@ def registry() -> list:
 
 
 def _bodies_directory():
-    from models.bodies import DIRECTORY as bodies
+    from models.bodies import DIRECTORY as bodies  # lazy: main process only; the workers import this module
 
     return bodies
 
@@ -93,8 +96,8 @@ def friction_jobs() -> list:
     """The friction section's jobs: one per paper figure with runs, the reference cases, the steady
     families, and per dissipation law the slip on the quasi-steady drift and in the damped run (one job:
     the run's slip event is switched on near the drift's slip times)."""
-    from models.dissipative import LAW_NAMES
-    from .figure_friction import figure_numbers
+    from models.dissipative import LAW_NAMES  # lazy: main process only; the workers import this module
+    from .figure_friction import figure_numbers  # lazy: main process only; the workers import this module
 
     study = ("verify.studies.friction",)
     jobs = [Job(f"friction/figures/fig-{n}", "friction_figure_job", (n,), ("verify.report.figure_friction",))
@@ -107,7 +110,7 @@ def friction_jobs() -> list:
 
 
 def _case_name(model: str, motion: str, params: dict) -> str:
-    from models import ring as ring_body
+    from models import ring as ring_body  # lazy: main process only; the workers import this module
 
     if model.startswith("ring"):
         tag = ring_body.parameter_set_name(params) or "custom"
@@ -119,8 +122,6 @@ def _case_name(model: str, motion: str, params: dict) -> str:
 def function_of(job: Job):
     """The job's function (``function``: a name in this module, or ``package.module:name``)."""
     if ":" in job.function:
-        import importlib
-
         module, _, name = job.function.partition(":")
         return getattr(importlib.import_module(module), name)
     return globals()[job.function]
@@ -135,10 +136,8 @@ def run(job: Job) -> JobOutput:
 
 def claims_job(module: str) -> JobOutput:
     """Evaluate every claim of ``verify.claims.<module>``: their records and their figures."""
-    import importlib
-
-    from .claim_records import claim_record
-    from .figures import render
+    from .claim_records import claim_record  # lazy: a worker loads only its job's modules
+    from .figures import render  # lazy: a worker loads only its job's modules
 
     claims = importlib.import_module(f"verify.claims.{module}").claims()
     records, images, timing = [], [], {}
@@ -153,46 +152,46 @@ def claims_job(module: str) -> JobOutput:
 
 
 def conservation_job(model: str) -> JobOutput:
-    from ..studies.conservation import conservation_rows
+    from ..studies.conservation import conservation_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(conservation_rows(models=(model,)))
 
 
 def threshold_job(model: str, motion: str, params: dict) -> JobOutput:
-    from ..studies.summary import threshold_case_rows
+    from ..studies.summary import threshold_case_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(threshold_case_rows(model, motion, params))
 
 
 def captions_job() -> JobOutput:
-    from ..studies.summary import caption_rows
+    from ..studies.summary import caption_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(caption_rows())
 
 
 def spindown_job() -> JobOutput:
-    from ..studies.summary import spindown_rows
+    from ..studies.summary import spindown_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(spindown_rows())
 
 
 def precision_job() -> JobOutput:
-    from ..studies.summary import precision_rows
+    from ..studies.summary import precision_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(precision_rows())
 
 
 def map_job(model: str, motion: str) -> JobOutput:
-    from ..studies.summary import map_row
-    from .study_figures import render_map
+    from ..studies.summary import map_row  # lazy: a worker loads only its job's modules
+    from .study_figures import render_map  # lazy: a worker loads only its job's modules
 
     row, smap, timing = map_row(model, motion)
     return JobOutput(row, [render_map(smap)], timing)
 
 
 def dissipation_job() -> JobOutput:
-    from ..studies.dissipation import dissipation_study, to_record
-    from .study_figures import render_dissipation
+    from ..studies.dissipation import dissipation_study, to_record  # lazy: a worker loads only its job's modules
+    from .study_figures import render_dissipation  # lazy: a worker loads only its job's modules
 
     laws = dissipation_study()
     return JobOutput([to_record(s) for s in laws], [render_dissipation(laws)],
@@ -200,8 +199,8 @@ def dissipation_job() -> JobOutput:
 
 
 def retrograde_job(mechanism: str) -> JobOutput:
-    from ..studies.retrograde import run_study
-    from .retrograde import figures
+    from ..studies.retrograde import run_study  # lazy: a worker loads only its job's modules
+    from .retrograde import figures  # lazy: a worker loads only its job's modules
 
     study = run_study(mechanisms=(mechanism,))
     summary = study.summaries[mechanism]
@@ -210,57 +209,70 @@ def retrograde_job(mechanism: str) -> JobOutput:
 
 
 def reference_job(precision: str, names: list) -> JobOutput:
-    from ..reference import check_set
+    from ..reference import check_set  # lazy: a worker loads only its job's modules
 
     return JobOutput([c.to_record() for c in check_set(precision, names)])
 
 
 
 def friction_figure_job(figure: int) -> JobOutput:
-    from .figure_friction import figure_rows
+    from .figure_friction import figure_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(figure_rows(figure))
 
 
 def friction_reference_job() -> JobOutput:
-    from ..studies.friction import reference_rows
+    from ..studies.friction import reference_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(reference_rows())
 
 
 def friction_steady_job() -> JobOutput:
-    from ..studies.friction import steady_rows
+    from ..studies.friction import steady_rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(steady_rows())
 
 
 def coulomb_examples_job() -> JobOutput:
-    from ..studies.coulomb_examples import examples
+    from ..studies.coulomb_examples import examples  # lazy: a worker loads only its job's modules
 
     return JobOutput(examples())
 
 
 def _tippe_files() -> list:
-    from models.bodies import DIRECTORY
+    from models.bodies import DIRECTORY  # lazy: a worker loads only its job's modules
 
     return sorted(DIRECTORY.glob("tippe-top*.toml"))
 
 
 def bodies_job() -> JobOutput:
-    from ..studies.bodies import rows
+    from ..studies.bodies import rows  # lazy: a worker loads only its job's modules
 
     return JobOutput(rows())
 
 
+def body_thresholds_job() -> JobOutput:
+    """The shipped bodies' steady motions and thresholds, each checked by the nonlinear equations and, for the
+    paper's bodies, by the built-in model's threshold (:mod:`verify.studies.body_thresholds`, ~60 s); a
+    disagreement fails the job."""
+    from ..studies.body_thresholds import failures, rows  # lazy: a worker loads only its job's modules
+
+    table = rows()
+    bad = failures(table)
+    if bad:
+        raise RuntimeError("body thresholds: " + "; ".join(bad))
+    return JobOutput(table)
+
+
 def tippe_top_job() -> JobOutput:
     """The tippe top under the smooth law and exact Coulomb friction (:mod:`verify.studies.tippe`, ~80 s)."""
-    from ..studies.tippe.report import job_data
+    from ..studies.tippe.report import job_data  # lazy: a worker loads only its job's modules
 
     return JobOutput(job_data())
 
 
 def friction_slip_job(law: str) -> JobOutput:
-    from ..studies.friction import slip_runs, transported_slip
+    from ..studies.friction import slip_runs, transported_slip  # lazy: a worker loads only its job's modules
 
     drift = transported_slip(law)
     return JobOutput({"drift": drift, "run": slip_runs(law, drift)})

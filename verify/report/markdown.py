@@ -13,8 +13,17 @@ from collections import Counter
 from typing import Optional
 
 from ..claims.base import ERRATUM, VERDICTS
+from ..studies.tippe.report import render_markdown as render_tippe
+from .bodies import render_markdown as render_bodies
+from .conservation import render_markdown as conservation_markdown
+from .engines import render_markdown as render_engines
+from .figures import with_alt_text
+from .friction import render_markdown as render_friction
 from .markup import quote, text
-from .summary import SEVERITY_WORDS
+from .reference import render_markdown as render_reference
+from .retrograde import render_markdown as render_retrograde
+from .sections import render as render_studies
+from .summary import SEVERITY_WORDS, render as render_summary, render_answers
 
 def verdict_label(rec: dict) -> str:
     return rec["verdict"] + (f" ({rec['severity']})" if rec["verdict"] == ERRATUM else "")
@@ -64,9 +73,6 @@ def benchmarks_section(latest: Optional[dict]) -> list:
 
 
 def _overview(results: dict) -> list:
-    from .summary import render as render_summary
-    from .summary import render_answers
-
     claims = results["claims"]
     counts = Counter(c["verdict"] for c in claims)
     # the tally and the two answers first: what a reader opens the report for
@@ -97,12 +103,6 @@ def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] 
     A claims section carries its claim records too, so the page can lay each out as a card;
     its Markdown body is the same claims rendered by :func:`claim_markdown`.
     """
-    from .conservation import render_markdown as conservation_markdown
-    from .friction import render_markdown as render_friction
-    from .reference import render_markdown as render_reference
-    from .retrograde import render_markdown as render_retrograde
-    from .sections import render as render_studies
-
     out = [("summary", "Summary", "\n".join(_overview(results)), None)]
     by_section = {}
     for rec in results["claims"]:
@@ -136,16 +136,10 @@ def sections(results: dict, benchmarks: Optional[dict], engines: Optional[dict] 
         out += guarded("Friction", lambda: _split_h2("\n".join(render_friction(studies["friction"],
                                                                                studies.get("dissipation")))))
     if studies.get("bodies") is not None:  # absent from a results.json made before the section
-        from .bodies import render_markdown as render_bodies
-
         out += guarded("Bodies of revolution", lambda: _split_h2("\n".join(
-            render_bodies(studies["bodies"], studies["reference"]["index"]))))
+            render_bodies(studies["bodies"], studies["reference"]["index"], studies.get("body_thresholds")))))
     if studies.get("tippe_top") is not None:  # absent from a results.json made before the section
-        from ..studies.tippe.report import render_markdown as render_tippe
-
         out += guarded("Tippe top", lambda: _split_h2(render_tippe(studies["tippe_top"])))
-    from .engines import render_markdown as render_engines
-
     out += _split_h2("\n".join(render_engines(engines)))
     out += _split_h2("\n".join(benchmarks_section(benchmarks)))
     out.append(("provenance", "Provenance", "```\n" + json.dumps(results["provenance"], indent=2) + "\n```", None))
@@ -163,8 +157,6 @@ def render_markdown(results: dict, benchmarks: Optional[dict] = None, engines: O
 def _split_h2(markdown: str, alts: Optional[dict] = None) -> list:
     """``## `` sections of a rendered block as (anchor, title, body, None), each figure line given
     its alt text from ``alts`` (results.json's ``figures``)."""
-    from .figures import with_alt_text
-
     markdown = with_alt_text(markdown, alts or {})
     out = []
     for chunk in re.split(r"^## ", markdown, flags=re.M)[1:]:

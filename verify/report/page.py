@@ -9,6 +9,7 @@ with the paper's words beside the verdict and the evidence, figures inlined with
 from __future__ import annotations
 
 import base64
+import hashlib
 import html
 import io
 import mimetypes
@@ -17,13 +18,19 @@ from functools import lru_cache
 from typing import Optional
 
 import jinja2
+import numpy as np
 from latex2mathml.converter import convert as latex_to_mathml
 from markdown_it import MarkdownIt
+from matplotlib.colors import to_rgb
 from mdit_py_plugins.dollarmath import dollarmath_plugin
+from PIL import Image as PILImage
 
+from ..provenance import write_atomic
+from ..style import LINE_COLOURS
+from .cache import default_folder
 from .markdown import sections, verdict_label
+from .markup import is_bare_equation, quote, text
 from .prose_math import typeset_prose
-from .markup import quote, text
 from .summary import SEVERITY_WORDS
 
 
@@ -112,8 +119,6 @@ WIDE_FORMULA = 90  # characters of TeX in one row of a displayed equation: wider
 def wide_quote(fragments) -> bool:
     """Whether the quote has a displayed equation with a row too long for the card's narrow quote
     column (about 400 px at 1400 px): the card then stacks the quote above the verdict."""
-    from .markup import is_bare_equation
-
     frags = [fragments] if isinstance(fragments, str) else fragments
     rows = [re.sub(r"\\(?:begin|end)\{\w+\*?\}|\\(?:left|right|mathbf|boldsymbol|dot|ddot|frac)\b|[{}]", "", row)
             for f in frags if is_bare_equation(f) for row in f.split("\\\\")]
@@ -150,12 +155,6 @@ def page_palette(im):
     :data:`PAGE_COLOURS` most used colours exactly, the rarer steps drawn as the nearest kept one (RGB);
     any other image (colour maps) as it is.
     """
-    import numpy as np
-    from PIL import Image as PILImage
-
-    from ..style import LINE_COLOURS
-    from matplotlib.colors import to_rgb
-
     if im.mode != "P":
         return im
     index = np.asarray(im)
@@ -211,13 +210,6 @@ def lossless_webp(png: bytes) -> bytes:
     about a minute for the report's figures once, against 2 s for method 4, for a few KB less), remembered in the job
     cache's folder by the PNG's sha256 (a pure function of the bytes: the page is the same whether it was
     remembered or not, and a figure pays the encoding only when it changes)."""
-    import hashlib
-
-    from PIL import Image as PILImage
-
-    from ..provenance import write_atomic
-    from .cache import default_folder
-
     memo = default_folder() / "webp6-page-palette-4" / hashlib.sha256(png).hexdigest()
     try:
         return memo.read_bytes()

@@ -7,7 +7,12 @@ and CPU give the same bytes.
 """
 from __future__ import annotations
 
+from ..claims import all_claims, missing
 from ..provenance import provenance
+from ..reference.proved import INDEX_FORMAT, proved_directory
+from ..reference.store import read_index, read_json
+from ..studies.conservation import PRECISIONS
+from ..studies.spindown import PRECISIONS as SPINDOWN_PRECISIONS, REFERENCE as SPINDOWN_REFERENCE
 from .summary import build as build_summary
 
 #: Every precision a number of the report comes from: the conservation table (double, quad),
@@ -17,17 +22,11 @@ REPORT_PRECISIONS = ("double", "long", "quad", "mp:128", "mp:256")
 
 
 def _precisions() -> tuple:
-    from ..studies.conservation import PRECISIONS
-    from ..studies.spindown import PRECISIONS as SPINDOWN_PRECISIONS, REFERENCE as SPINDOWN_REFERENCE
-
     return PRECISIONS + SPINDOWN_PRECISIONS + (SPINDOWN_REFERENCE,) + REPORT_PRECISIONS
 
 
 def assemble(outcomes: dict) -> dict:
     """results.json as a dict, from :func:`~.runner.run_jobs`' outcomes (job name -> Outcome)."""
-    from ..claims import all_claims, missing
-    from ..reference.store import read_index
-
     def data(prefix):
         return [o.data for name, o in outcomes.items() if name.startswith(prefix) and o.status != "failed"]
 
@@ -54,7 +53,8 @@ def assemble(outcomes: dict) -> dict:
                "spindown": one("studies/spindown"), "precision": one("studies/precision"), "maps": data("maps/"),
                "dissipation": one("dissipation"), "retrograde": retro,
                "reference": {"index": read_index(), "checks": checks, "proved": _proved_summary()},
-               "friction": friction, "bodies": one("bodies"), "tippe_top": one("tippe-top")}
+               "friction": friction, "bodies": one("bodies"),
+               "body_thresholds": one("bodies/thresholds"), "tippe_top": one("tippe-top")}
     failures = [{"job": name, "error": o.error} for name, o in outcomes.items() if o.status == "failed"]
     eqs, figs = missing()
     out = {"summary": None, "claims": claims, "conservation": [row for rows in data("conservation/") for row in rows],
@@ -70,9 +70,6 @@ def assemble(outcomes: dict) -> dict:
 
 def _proved_summary():
     """The proved enclosures' index (reports/reference/proved/index.json), or None where none were made."""
-    from ..reference.proved import INDEX_FORMAT, proved_directory
-    from ..reference.store import read_json
-
     path = proved_directory() / "index.json"
     if not path.exists():
         return None

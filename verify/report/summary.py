@@ -7,6 +7,8 @@ results.json; :func:`render` turns that dict, and nothing else, into Markdown.
 """
 from __future__ import annotations
 
+from models import ring
+
 from ..claims.base import ERRATUM, NOT_CHECKABLE, QUALIFIED, SEVERITIES
 from ..studies.finite_offset import RULE
 from .markup import inline_quote, text
@@ -64,8 +66,6 @@ def build(claims: list, studies: dict) -> dict:
 
 def _ring_set_values(name):
     """The printed set's own numbers (decimal strings), so that the summary shows them from the data."""
-    from models import ring
-
     return dict(ring.PRINTED) if name == "printed" else None
 
 

@@ -22,10 +22,10 @@ def compute(out="reports", fresh: bool = False, workers=None, say=None) -> dict:
 
     Returns the results dict.  Raises :class:`ReportIncomplete` after writing, when a job failed.
     """
-    from .cache import JobCache
-    from .jobs import registry
-    from .results import assemble
-    from .runner import run_jobs
+    from .cache import JobCache  # lazy: 0.8 s, not in 'report' input checks
+    from .jobs import registry  # lazy: 0.8 s, not in 'report' input checks
+    from .results import assemble  # lazy: 0.8 s, not in 'report' input checks
+    from .runner import run_jobs  # lazy: 0.8 s, not in 'report' input checks
 
     out = Path(out)
     say = say or (lambda s: print(s, file=sys.stderr, flush=True))
@@ -90,9 +90,9 @@ def render(out="reports", say=None) -> None:
 
     All four are rendered before any is written, so a results.json the renderers cannot read
     leaves the old files as they were."""
-    from .conservation import render_markdown as conservation_markdown
-    from .markdown import render_markdown
-    from .page import render_html
+    from .conservation import render_markdown as conservation_markdown  # lazy: 0.8 s, not in 'report' input checks
+    from .markdown import render_markdown  # lazy: 0.8 s, not in 'report' input checks
+    from .page import render_html  # lazy: 0.8 s, not in 'report' input checks
 
     out = Path(out)
     say = say or (lambda s: print(s, file=sys.stderr, flush=True))

@@ -1,6 +1,6 @@
 """Scoring another simulator against the reference set (``python -m verify score RUN --case NAME``).
 
-* :mod:`.geometry` -- the documented forms of a run (Euler angles; rotation matrix or quaternion
+* :mod:`verify.contact_geometry` -- the documented forms of a run (Euler angles; rotation matrix or quaternion
   with the centre of mass and the angular velocity), the conversion between them, the contact
   point and the energies, in numpy (the symbolic definitions are :mod:`verify.frames`);
 * :mod:`.casefiles` -- reading the reference set's JSON files;
@@ -16,7 +16,7 @@ Importing this package and scoring a run on the case's grid times needs numpy an
 >>> from verify.scoring import assert_scores
 >>> assert_scores("my_run.csv", "disk-standard-1", min_digits=6)   # in a pytest test: fails below 6 digits  # doctest: +SKIP
 """
-from .geometry import BODIES_ON_PLANE, FORMS
+from ..contact_geometry import BODIES_ON_PLANE, FORMS
 from .runs import InvalidRun, read_run
 from .agreement import DIGITS_RESOLVED, START_TOLERANCE, ComponentScore, Score, assert_scores, score
 

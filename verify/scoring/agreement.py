@@ -37,14 +37,15 @@ error at 10^-27 or below on every case, far beyond a double).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Optional
 
+import mpmath
 import numpy as np
 
 from .casefiles import DIRECTORY, load_set
-from .geometry import CONTACT, STATE_NAMES, b_to_euler, contact_point, energy as state_energy, rotation_defect
+from ..contact_geometry import CONTACT, STATE_NAMES, b_to_euler, contact_point, energy as state_energy, rotation_defect
 from .runs import InvalidRun, exact_decimal, read_run
 
 DIGITS_RESOLVED = -math.log10(2.0 ** -53)
@@ -316,8 +317,6 @@ def own_energy(model: str, columns: dict, R: np.ndarray, w: np.ndarray, params: 
 
 
 def _with_verdict(s: Score) -> Score:
-    from dataclasses import replace
-
     constraints = ("constraints held by construction (form euler)" if s.contact_height is None else
                    f"contact height {s.contact_height:.1e}" if s.switches else  # the contact's velocity is its slip
                    f"contact height {s.contact_height:.1e}, contact velocity {s.contact_velocity:.1e}")
@@ -387,8 +386,6 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
     continuous angle of 10^3 rad holds only 13 digits after the point in a double, so reducing
     the double would cost a run that reports its angles in (-pi, pi] the digits it has.
     """
-    import mpmath
-
     index = {float(s): j for j, s in enumerate(record["grid"])}
     hybrid = "friction" in record
     extra_names = ("energy", "slip_speed") if hybrid else ()
@@ -399,15 +396,15 @@ def _reference(record: dict, t: np.ndarray) -> tuple:
         source = "stored grid"
     else:
         try:  # the quad re-integration needs the full suite; a light install (numpy, mpmath) scores grid times only
-            import heyoka  # noqa: F401
-            import sympy as sp
+            from ..precision import parse_precision  # lazy: heyoka: the full suite only
+
+            import sympy as sp  # lazy: the full suite only (a light install, numpy and mpmath, scores grid times)
         except ImportError as err:
             off = next(float(v) for v in t if float(v) not in index)
             raise InvalidRun(f"the run's times are not the case's grid times (t = {off!r} is not one); without "
                              f"{err.name} this install cannot re-integrate the case at other times: give the grid "
                              f"times (listed in the case file, key 'grid') or install the full suite") from None
-        from ..engine.single import solve
-        from ..precision import parse_precision
+        from ..engine.single import solve  # lazy: heyoka, the full suite only (as parse_precision above)
 
         quad = parse_precision("quad")
         params = {k: sp.Rational(v["exact"]) for k, v in record["model"]["parameters"].items()}
@@ -440,8 +437,8 @@ def _hybrid_reference(record: dict, params: dict, times: list, quad):
     """A Coulomb case re-run by the hybrid in quad at ``times``: (the run, the index of each time's output).
 
     A run that switches differently from the stored reference is not its motion: that raises."""
-    from ..engine.hybrid import solve as solve_hybrid
-    from ..reference.coulomb_runs import grid_rows, switch_kinds
+    from ..engine.hybrid import solve as solve_hybrid  # lazy: heyoka, the full suite only
+    from ..engine.hybrid_run import grid_rows, switch_kinds  # lazy: as solve_hybrid
 
     friction = record["friction"]
     sol = solve_hybrid(friction["model"], times[-1], record["initial_state"], params, friction=friction["mu"],

@@ -12,11 +12,12 @@ from __future__ import annotations
 import csv
 import json
 import math
+from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
 
-from .geometry import FORMS, detect
+from ..contact_geometry import FORMS, detect
 
 
 #: The first line of the suite's own run files (verify.series.columns.FORMAT, written out: scoring stays light).
@@ -110,6 +111,4 @@ def exact_decimal(t: float) -> str:
     """The exact decimal value of a double (so that a quad run is evaluated at that very time)."""
     if not math.isfinite(t):
         raise ValueError(t)
-    from decimal import Decimal
-
     return format(Decimal(t), "f")

@@ -137,9 +137,9 @@ def run_columns(sol, extra_meta: dict | None = None) -> RunColumns:
 
 def suite_version() -> dict:
     """The suite's version and the commit of its sources (``verify.provenance``)."""
-    from importlib.metadata import PackageNotFoundError, version
+    from importlib.metadata import PackageNotFoundError, version  # lazy: 30 ms, only to write a run
 
-    from ..provenance import source_commit
+    from ..provenance import source_commit  # lazy: 46 ms, only to write a run
 
     try:
         package = version("rolling-verify")

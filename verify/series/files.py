@@ -60,7 +60,7 @@ def output_path(text: str, option: str = "--output", extensions: tuple = EXTENSI
 
 def write_run(columns: RunColumns, path) -> Path:
     """Write ``columns`` to ``path`` in the format its extension names; returns the path."""
-    from ..provenance import write_atomic
+    from ..provenance import write_atomic  # lazy: 30 ms, only to write a run
 
     path = Path(path)
     kind = path.suffix.lower()

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from .columns import RunColumns
+from .files import output_path
 
 FORMATS = (".png", ".svg", ".pdf")
 #: the files' metadata left out (dates), so that a file is the same bytes on every run
@@ -30,7 +31,7 @@ _METADATA = {".png": {"Software": None}, ".svg": {"Date": None}, ".pdf": {"Creat
 def contact_trace(model: str, params: dict, theta, phi, x, y):
     """(x, y) of the contact point P = C + r_P on the plane (paper Eqs. 7, 47, 63), or None without
     a contact (the gyroscope's pivot, the effective model): :mod:`verify.animation.geometry`'s."""
-    from ..animation import geometry
+    from ..animation import geometry  # lazy: verify.animation (17 ms) only to draw (not 'trajectory' alone)
 
     kind = geometry.DRAWN_MODELS.get(model)
     if kind not in ("disk", "ring", "hurricane") or (kind == "ring" and "h" not in params):
@@ -41,7 +42,7 @@ def contact_trace(model: str, params: dict, theta, phi, x, y):
 
 def draw_run(columns: RunColumns):
     """The matplotlib Figure of the six panels (call inside ``matplotlib.rc_context(style.RC)``)."""
-    from ..style import plt
+    from ..style import plt  # lazy: matplotlib (0.7 s) only to draw (not 'trajectory' alone)
 
     m, u = columns.meta, columns.units
     f = columns.as_float
@@ -121,9 +122,9 @@ def _short(text) -> str:
 
 def plot_bytes(columns: RunColumns, suffix: str) -> bytes:
     """The picture of the run as PNG, SVG or PDF bytes (``suffix`` one of :data:`FORMATS`)."""
-    import matplotlib
+    import matplotlib  # lazy: matplotlib (0.3 s) only to draw (not 'trajectory' alone)
 
-    from .. import style
+    from .. import style  # lazy: matplotlib (0.6 s) only to draw (not 'trajectory' alone)
 
     suffix = suffix.lower()
     if suffix not in FORMATS:
@@ -138,14 +139,12 @@ def plot_bytes(columns: RunColumns, suffix: str) -> bytes:
 
 def picture_path(text: str, option: str = "--plot") -> Path:
     """The checked picture file (:func:`verify.series.files.output_path`'s rule, the picture formats)."""
-    from .files import output_path
-
     return output_path(text, option, FORMATS)
 
 
 def write_plot(columns: RunColumns, path) -> Path:
     """Draw the run into ``path`` (PNG, SVG or PDF by its extension), atomically."""
-    from ..provenance import write_atomic
+    from ..provenance import write_atomic  # lazy: verify.provenance (30 ms) only to draw (not 'trajectory' alone)
 
     path = Path(path)
     write_atomic(path, plot_bytes(columns, path.suffix))

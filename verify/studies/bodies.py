@@ -13,6 +13,11 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
+from models import get_model
+from models.bodies import default_start, load, model_of, shipped
+
+from ..engine.single import solve
+
 #: The paper's bodies among the shipped files: the built-in model and how its parameters map to the file's.
 PAPER_BODIES = {"disk": "disk", "hoop": "disk", "ring": "ring", "hurricane": "hurricane"}
 #: Starts of the identity runs, per built-in model (rates in 1/s), and their parameters.
@@ -23,8 +28,6 @@ _IDENTITY_RUNS = {"disk": ({"theta": "1.2", "phidot": "1", "psidot": "10"}, {"k"
 
 def rows() -> list:
     """One JSON-ready row per shipped body (:func:`models.bodies.shipped`)."""
-    from models.bodies import load, model_of, shipped
-
     out = []
     for name in shipped():
         body = load(name)
@@ -46,10 +49,6 @@ def rows() -> list:
 def default_run(model, body) -> dict:
     """A 1-s double run from the body's default start (:func:`models.bodies.default_start`): outcome, steps, each
     invariant's drift / (eps x term scale)."""
-    from models.bodies import default_start
-
-    from ..engine.single import solve
-
     start, _ = default_start(body)
     sol = solve(model, "1", start, n_eval=33)
     return {"start": {k: str(v) for k, v in start.items()}, "outcome": sol.outcome,
@@ -59,10 +58,6 @@ def default_run(model, body) -> dict:
 
 def paper_identity(name: str, model) -> dict:
     """The body file's equations against the built-in model's: identity and a run of each."""
-    from models import get_model
-
-    from ..engine.single import solve
-
     builtin = get_model(PAPER_BODIES[name])
     subs = {}
     if PAPER_BODIES[name] == "disk":

@@ -21,6 +21,9 @@ import sympy as sp
 from models import get_model
 from models.symbols import phidot, psidot, theta, thetadot
 
+from ..engine import hybrid
+from ..engine.single import solve
+
 PRECISIONS = ("double", "quad")
 SKID = {"state": {"theta": "1.2", "phidot": "3", "psidot": "25"}, "velocity": ("3", "1"), "friction": "1",
         "t_end": "0.5", "params": None}
@@ -42,8 +45,6 @@ def steady_circle():
 
 
 def _circle_case():
-    from ..engine.single import solve
-
     state, params = steady_circle()
     need = solve("disk", "0.2", state, params, precision="quad", n_eval=2).friction_required[0]
     mu = sp.N(sp.Rational(9, 10) * sp.Float(str(need), 40), 30)
@@ -54,8 +55,6 @@ def _circle_case():
 def perturbed_circle():
     """(state, params, mu) of the steady circle tilted by 0.01 rad, mu halfway between the extremes of its
     mu_req over 0.2 s (the rolling run without the slip event, double, 2001 outputs)."""
-    from ..engine.single import solve
-
     state, params = steady_circle()
     state = dict(state, theta=str(float(state["theta"]) + 0.01))
     need = [float(v) for v in solve("disk", "0.2", state, params, n_eval=2001).friction_required]
@@ -69,8 +68,6 @@ def _perturbed_case():
 
 def examples() -> list:
     """One record per example: the phases per precision, E + W, and the switch times' agreement."""
-    from ..engine import hybrid
-
     out = []
     for name, case in (("skid", SKID), ("circle below its friction", _circle_case()),
                        ("perturbed circle, mu between its extremes", _perturbed_case())):

@@ -1,74 +1,33 @@
-"""The runs of a stability map: the reduced system compiled for heyoka's batch mode, every lane's
-start and parameters, and the ensemble propagation reduced to each run's largest deviation
-(:mod:`verify.studies.maps` describes the protocol, how it runs and why it is deterministic).
+"""The runs of a stability map on the batch road: the map's :class:`verify.engine.ensemble.Ensemble` (the
+reduced lane system), every lane's start and parameters laid out by name, and the ensemble propagation
+reduced to each run's largest deviation (:mod:`verify.studies.maps` describes the protocol, how it runs
+and why it is deterministic).  No heyoka here: the engine room builds and runs the integrators.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 from typing import Optional
 
-import heyoka as hy
 import mpmath
 import numpy as np
 
-from models import get_model
-from models.symbols import phidot, psidot, theta, thetadot
-
 from . import thresholds
-from ..engine import batch
+from ..engine import batch, validation
+from ..engine.ensemble import Ensemble, ensemble
+from ..engine.single import resolve_parameters
+from ..precision import parse_precision
 
 SAMPLES_PER_RADIAN = 4  # dense-output samples per radian of the fastest rate (see sample_times)
 CHUNK = 64  # batches per ensemble call: bounds the memory of the dense output held at once
-_EXTRA = ("alive", "reason", "t_left", "lower", "upper")  # per-lane parameters after the model's
 
 
-@lru_cache(maxsize=None)
-def reduced_system(name: str):
-    """heyoka form of the reduced system of model ``name``, with the freezing factor.
-
-    Returns ``(variables, system, events, n_model_pars)``: ``events`` are
-    ``(name, expression, direction)`` -- theta at the lower and upper bound (runtime
-    parameters), and the normal force where the model has a contact.
-    """
-    from verify.engine.compile import contact_event, to_heyoka
-
-    model = get_model(name)
-    variables = hy.make_vars("theta", "thetadot", "phidot", "psidot")
-    mapping = dict(zip((theta, thetadot, phidot, psidot), variables))
-    n = len(model.parameters)
-    mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    alive, lower, upper = hy.par[n], hy.par[n + 3], hy.par[n + 4]
-    rhs = [thetadot] + list(model.accelerations)
-    allowed = set(mapping)
-    for expr in rhs + ([model.normal_force] if model.normal_force is not None else []):
-        extra = expr.free_symbols - allowed
-        if extra:
-            raise RuntimeError(f"model {name!r}: the reduced system depends on {sorted(map(str, extra))}")
-    unscaled = [to_heyoka(r, mapping) for r in rhs]
-    system = [(v, r * alive) for v, r in zip(variables, unscaled)]
-    th = variables[0]
-    events = [("below", th - lower, hy.event_direction.negative),
-              ("above", th - upper, hy.event_direction.positive)]
-    if model.normal_force is not None:
-        # on the system's own accelerations, so that heyoka computes them once (compile.contact_event)
-        events.append(("contact_lost", contact_event(model, mapping, unscaled[1:]), hy.event_direction.negative))
-    return tuple(variables), tuple(system), tuple(events), n
-
-
-@lru_cache(maxsize=None)
-def template(name: str, batch_size: int, cooldown: float):
-    """A batch integrator of the reduced system (compiled once; copied by every ensemble iteration).
-
-    A frozen lane is parked in the middle of its bounds with thetadot = 0, so that it never sits
-    on a singular end of the domain.
-    """
-    variables, system, events, n = reduced_system(name)
-    model = get_model(name)
-    return batch.batch_system(system, events, batch.Lanes(n, n + 1, n + 2), n + len(_EXTRA), batch_size, cooldown, np.ones(4),
-                              [float(p.default) for p in model.parameters], park=((1, 0.0),),
-                              park_between=(0, n + 3, n + 4))
+def map_ensemble(name: str, batch_size: int, cooldown: float) -> Ensemble:
+    """The map's :class:`verify.engine.ensemble.Ensemble`: the reduced lane system of model ``name``
+    (theta, thetadot, phidot, psidot; events: theta at the lane's ``theta_lower`` and ``theta_upper``,
+    the loss of contact where the model has a contact), one per process and settings.  A frozen
+    lane is parked in the middle of its bounds with thetadot = 0, never on a singular end of the domain."""
+    return ensemble(name, "reduced", batch_size, cooldown)
 
 
 # --- the grid of runs ------------------------------------------------------------------------
@@ -109,9 +68,9 @@ def _steady(name, motion, rate, params, tmin, tmax) -> dict:
     return s
 
 
-def _initial_conditions(name, motion, rates, tilts, params, cap):
+def _initial_conditions(model, motion, rates, tilts, params, cap):
     """Per-point initial state, bounds and steady angle, in map order (tilt-major)."""
-    model = get_model(name)
+    name = model.name
     dom = model.domain
     tmin, tmax = float(dom.theta_min), float(dom.theta_max)
     steady = [_steady(name, motion, float(r), params, tmin, tmax) for r in rates]
@@ -120,45 +79,35 @@ def _initial_conditions(name, motion, rates, tilts, params, cap):
     y0 = np.zeros((4, n))
     bounds = np.zeros((2, n))
     with mpmath.workdps(40):
+        # per rate once: the steady angle (40 digits), the bounds and the rates in double
+        th0s = [mpmath.mpf(s["theta"]) for s in steady]
+        ends = [(max(float(th0 - cap), tmin), min(float(th0 + cap), tmax)) for th0 in th0s]
+        rates_of = [(float(mpmath.mpf(s["phidot"])), float(mpmath.mpf(s["psidot"]))) for s in steady]
         for i, tilt in enumerate(tilts):
-            for j, s in enumerate(steady):
+            dt = mpmath.mpf(float(tilt))
+            for j, th0 in enumerate(th0s):
                 k = i * len(rates) + j
-                th0 = mpmath.mpf(s["theta"])
-                lo, hi = max(float(th0 - cap), tmin), min(float(th0 + cap), tmax)
-                start = float(th0 + mpmath.mpf(float(tilt)))
+                lo, hi = ends[j]
+                start = float(th0 + dt)  # the steady angle (40 digits) plus the tilt, rounded once
                 if not lo < start < hi:
                     raise ValueError(f"tilt {float(tilt)!r} at rate {float(rates[j])!r} starts theta at {start!r}, "
                                      f"outside ({lo!r}, {hi!r}); allowed: tilts below the cap {cap} that keep "
                                      f"theta inside the domain of {name!r}")
-                y0[:, k] = (start, 0.0, float(mpmath.mpf(s["phidot"])), float(mpmath.mpf(s["psidot"])))
+                y0[:, k] = (start, 0.0, *rates_of[j])
                 bounds[:, k] = (lo, hi)
     return y0, bounds, ths
-
-
-def _lane_arrays(y0, bounds, pars, batch_size):
-    """States and parameters for every lane, padded to whole batches by repeating the last point."""
-    n = y0.shape[1]
-    padded = -(-n // batch_size) * batch_size
-    idx = np.minimum(np.arange(padded), n - 1)
-    states = np.ascontiguousarray(y0[:, idx])
-    p = np.zeros((len(pars) + len(_EXTRA), padded))
-    p[: len(pars)] = np.array(pars)[:, None]
-    m = len(pars)
-    p[m] = 1.0  # alive
-    p[m + 2] = np.nan  # t_left
-    p[m + 3: m + 5] = bounds[:, idx]
-    return states, p
 
 
 @dataclass(frozen=True, eq=False)
 class Runs:
     """Every lane of a map, ready for the integrators (see :func:`prepare_runs`).
 
-    ``states`` (4, n_lanes) and ``pars`` (n_model_pars + 5, n_lanes) are lane-major, n_lanes a
-    multiple of ``batch_size`` (the last point repeated as padding); the first ``n`` lanes are
-    the map's points in tilt-major order.  ``ref`` is each lane's steady angle.
+    ``states`` (4, n_lanes) and ``pars`` (the lane parameters of ``ensemble``, by name, n_lanes)
+    hold every lane, n_lanes a multiple of ``batch_size`` (the last point repeated as padding); the
+    first ``n`` lanes are the map's points in tilt-major order.  ``ref`` is each lane's steady angle.
     """
 
+    ensemble: Ensemble
     model: str
     states: np.ndarray
     pars: np.ndarray
@@ -179,54 +128,52 @@ class Runs:
 def prepare_runs(model: str, motion: str, rates, tilts, t_end: float, params: dict, cap: float,
                  step_cap: bool, batch_size: int) -> Runs:
     """Initial states, per-lane parameters, sample times and step cap of a map (inputs validated)."""
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
-
-    from verify.engine import validation
-
-    mdl = get_model(model)
-    pars = [float(v) for v in resolve_parameters(mdl, params, parse_precision("double")).values()]
-    y0, bounds, ths = _initial_conditions(model, motion, rates, tilts, params, cap)
-    full = np.zeros((8, y0.shape[1]))  # every start checked as solve and the sweeps check theirs
+    ens = map_ensemble(model, batch_size, 2.0 * float(t_end) + 1.0)  # the cooldown of Runs.cooldown
+    mdl = ens.model
+    resolved = resolve_parameters(mdl, params, parse_precision("double"))
+    values = {name: float(resolved[name]) for name in mdl.parameter_names}  # by name, whatever the mapping's order
+    y0, bounds, ths = _initial_conditions(mdl, motion, rates, tilts, params, cap)
+    n = y0.shape[1]
+    full = np.zeros((8, n))  # every start checked as solve and the sweeps check theirs
     full[[0, 3, 4, 5]] = y0
-    normal = validation.normal_force_columns(model, full, np.repeat(np.array(pars)[:, None], y0.shape[1], axis=1))
+    normal = ens.normal_force_columns(full, ens.model_columns(values, n))
     problem = validation.first_problem(mdl, full, normal)
     if problem is not None:
         k = problem[0]
         raise validation.InvalidStart(f"map point rate = {float(rates[k % len(rates)])!r}, tilt = "
                                       f"{float(tilts[k // len(rates)])!r}: {problem[2]}", problem[1])
-    rates, g = y0[2:].ravel(), dict(zip(mdl.parameter_names, pars)).get("g", 1.0)
-    states, lane_pars = _lane_arrays(y0, bounds, pars, batch_size)
-    n = y0.shape[1]
-    ref = np.tile(ths, len(tilts))
-    ref = np.concatenate([ref, np.full(states.shape[1] - n, ref[-1])])
-    return Runs(model, states, lane_pars, ref, sample_times(t_end, batch.fastest_rate(rates, g)),
-                batch.step_cap(rates, g) if step_cap else None,
-                n, len(pars), batch_size, ths, tuple(pars))
+    idx = batch.pad_lanes(n, batch_size)
+    states = np.ascontiguousarray(y0[:, idx])
+    lane_pars = ens.parameters(len(idx), {**values, "theta_lower": bounds[0, idx], "theta_upper": bounds[1, idx]})
+    ref = np.tile(ths, len(tilts))[idx]
+    rates_all, g = y0[2:].ravel(), values["g"]  # the model's own g (every model has one: sqrt(g) is a rate)
+    return Runs(ens, model, states, lane_pars, ref, sample_times(t_end, ens.fastest_rate(rates_all, g)),
+                ens.step_cap(rates_all, g) if step_cap else None, n, len(values), batch_size, ths,
+                tuple(values.values()))
 
 
-def propagate(name, states, pars, ref, grid, batch_size, threads, step_cap, chunk=CHUNK):
+def propagate(runs: Runs, threads: int, chunk: int = CHUNK):
     """Run every lane by ensemble propagation of batches; reduce each batch's dense output at once.
 
-    ``states`` (4, n_lanes) and ``pars`` (n_pars, n_lanes) hold every lane's initial state and
-    parameters, n_lanes a multiple of ``batch_size``; ``ref`` (n_lanes) is the angle the
-    deviation is measured from.  The ensemble runs ``chunk`` batches per call, so that only
-    their dense output is held at once.  Returns (max |theta - ref| over ``grid`` per lane,
-    the lanes' final parameters -- alive, reason, t_left --, batch steps taken in all).
+    The ensemble runs ``chunk`` batches per call, so that only their dense output is held at once.
+    Returns (max |theta - ref| over the grid per lane, the lanes' final parameters -- alive,
+    reason, t_stop --, batch steps taken in all).  A batch that did not reach the end of the grid
+    (a lane heyoka stopped) raises RuntimeError naming it: a map has no row for a failed run.
     """
-    ta = template(name, batch_size, 2.0 * float(grid[-1]) + 1.0)  # the cooldown of Runs.cooldown
-    deviation = np.empty(states.shape[1])
-    final_pars = np.empty_like(pars)
+    ens, grid = runs.ensemble, runs.grid
+    th = ens.lanes.row("theta")
+    deviation = np.empty(runs.states.shape[1])
+    final_pars = np.empty_like(runs.pars)
     steps = 0
-    for batches, _ in batch.propagate_grid(ta, states, pars, grid, threads, chunk, max_delta_t=step_cap):
+    for batches, _ in ens.propagate(runs.states, runs.pars, grid, threads, chunk, max_delta_t=runs.step_cap):
         for b in batches:
             if not b.complete(len(grid)):
                 local = b.local
-                raise RuntimeError(f"batch {b.index} of the {name!r} map stopped with "
+                raise RuntimeError(f"batch {b.index} of the {runs.model!r} map stopped with "
                                    f"{[r[0] for r in local.propagate_res]} at t = {list(local.time)} "
                                    f"(state {local.state.tolist()})")
             cols = b.columns
-            deviation[cols] = np.max(np.abs(b.output[:, 0, :] - ref[None, cols]), axis=0)
+            deviation[cols] = np.max(np.abs(b.output[:, th, :] - runs.ref[None, cols]), axis=0)
             final_pars[:, cols] = b.local.pars
             steps += b.steps
     return deviation, final_pars, steps

@@ -15,11 +15,12 @@ How it runs
 -----------
 (:mod:`verify.studies.map_runs`)
 
-* The reduced system is compiled once per model in double by :mod:`verify.engine.batch`
+* The reduced system is compiled once per model in double (:func:`verify.engine.lanes.compile_lanes`,
+  through the map's :class:`verify.engine.ensemble.Ensemble`)
   (batch size twice :func:`verify.engine.lanes.simd_width`: two SIMD registers a lane group; measured on
   a 2-core AVX2 machine, 10^4 disk runs take 7.2 s with 8 lanes and 9.0 s with 4, bit for bit the
   same results), parameters as runtime ``par[i]``: the model's parameters in model order, then
-  five per-lane parameters (alive, reason, t_left, lower and upper bound).
+  five per-lane parameters laid out by name (alive, reason, t_stop, theta_lower, theta_upper).
 * The grid of (tilt, rate) points is cut into batches and run on threads by
   :func:`verify.engine.batch.propagate_grid`; each batch's dense output on a fixed time grid is
   reduced to its maximum deviation as soon as its chunk returns.
@@ -48,13 +49,15 @@ from typing import Optional
 
 import numpy as np
 
-from models import get_model
+from models import BODY_PREFIX
 
 from . import thresholds
+from ..engine.ensemble import resolve
 from ..engine.lanes import simd_width
-# the runs (re-exported: tests and benchmarks/ reach them as maps.Runs, maps.template, ...)
-from .map_runs import (CHUNK, SAMPLES_PER_RADIAN, Runs, prepare_runs, propagate, reduced_system,  # noqa: F401
-                       sample_times, template)
+from ..engine.single import resolve_parameters
+from ..precision import parse_precision
+# the runs (re-exported: tests and benchmarks/ reach them as maps.Runs, maps.prepare_runs, ...)
+from .map_runs import CHUNK, SAMPLES_PER_RADIAN, Runs, map_ensemble, prepare_runs, propagate, sample_times  # noqa: F401
 
 MOTIONS = thresholds.MOTIONS
 GROWTH = thresholds.GROWTH
@@ -138,6 +141,10 @@ class StabilityMap:
 # --- input -------------------------------------------------------------------------------
 
 def _check_motion(model: str, motion: str) -> None:
+    if model.startswith(BODY_PREFIX):
+        raise ValueError(f"model {model!r}: a stability map starts on a steady motion, and a body file has no "
+                         f"steady-motion study (models.steady.MOTIONS); allowed: {', '.join(MOTIONS)} (a body file "
+                         "sweeps with explicit starts: python -m verify sweep)")
     if model not in MOTIONS:
         raise ValueError(f"unknown model {model!r} for a stability map; allowed: {', '.join(MOTIONS)}")
     if motion not in MOTIONS[model]:
@@ -224,10 +231,7 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
     """
     _check_motion(model, motion)
     params = dict(params or {})
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
-
-    resolve_parameters(get_model(model), params, parse_precision("double"))  # names and ranges, before sympy
+    resolve_parameters(resolve(model), params, parse_precision("double"))  # names and ranges, before sympy
     t_end = _positive("t_end", t_end)
     cap = _positive("cap", cap)
     tilts = _positive_vector("tilts", np.logspace(-6, -1, 6) if tilts is None else tilts)
@@ -244,21 +248,20 @@ def stability_map(model: str = "disk", motion: str = "diameter-spin", rates=None
             raise ValueError(f"{model} {motion} has no linear threshold: give the rates explicitly")
         rates = np.linspace(0.5 * lin, 2.0 * lin, 20)
         runs = prepare_runs(model, motion, rates, tilts, t_end, params, cap, step_cap, batch_size)
-    template(model, batch_size, runs.cooldown)  # compile (or load from heyoka's cache) outside the timing
+    runs.ensemble.lanes  # compile (or load from heyoka's cache) outside the timing
     start = time.perf_counter()
-    dev, final, steps = propagate(model, runs.states, runs.pars, runs.ref, runs.grid, batch_size, threads,
-                                  runs.step_cap)
+    dev, final, steps = propagate(runs, threads)
     wall = time.perf_counter() - start
 
-    n, m = runs.n, runs.n_model_pars
+    n, record = runs.n, runs.ensemble.record
     shape = (len(tilts), len(rates))
-    alive = final[m, :n] != 0.0
+    alive = record(final, "alive")[:n] != 0.0
     dev = np.where(alive, dev[:n], cap)
     return StabilityMap(
         model=model, motion=motion, params=dict(thr.params), rates=_frozen(rates), tilts=_frozen(tilts),
         theta_steady=_frozen(runs.theta_steady), max_deviation=_frozen(dev.reshape(shape)),
-        left=_frozen(~alive.reshape(shape)), reason=_frozen(final[m + 1, :n].astype(np.int8).reshape(shape)),
-        t_left=_frozen(final[m + 2, :n].reshape(shape)), linear_threshold=lin, t_end=t_end, cap=cap,
+        left=_frozen(~alive.reshape(shape)), reason=_frozen(record(final, "reason")[:n].astype(np.int8).reshape(shape)),
+        t_left=_frozen(record(final, "t_stop")[:n].reshape(shape)), linear_threshold=lin, t_end=t_end, cap=cap,
         n_samples=len(runs.grid), n_trajectories=n, batch_size=batch_size, threads=threads, n_steps=steps,
         step_cap=runs.step_cap, wall_seconds=wall,
     )

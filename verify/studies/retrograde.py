@@ -12,7 +12,7 @@ duration) runs beside them.
 
 "Orbit" is the sense in which the centre of mass circles over many nutation loops -- its slow
 path, read in windows of 12 nutations by the two filters of :mod:`verify.circling` and
-undecided wherever they do not agree (:func:`verify.sweep.engine.senses`).  A run turns
+undecided wherever they do not agree (:func:`verify.studies.orbits.senses`).  A run turns
 retrograde when its slow path starts in the sense of its spin omega.Z and ends against it, in
 the first and last windows that decide; it is undecided when fewer than two windows decide.
 The former reading -- the net turn of the line of nodes, which counts the loops -- is shown
@@ -32,6 +32,7 @@ from pathlib import Path
 
 from ..sweep import SPECS, load, parse, run_sweep
 from ..sweep.store import Store
+from .orbits import senses
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -102,7 +103,7 @@ def run_study(directory=None, threads=None, progress=None, mechanisms=MECHANISMS
             results = {}
             for label, s in (("sweep", spec), ("control", control)):
                 say(f"  retrograde turn: {s.name} ({s.n_points} trajectories)")
-                res = run_sweep(s, threads=threads, progress=False)
+                res = run_sweep(s, threads=threads, progress=False, senses=senses)
                 with Store(s) as store:
                     results[label] = (s, store.rows(), res.seconds)
             out[m] = summarise(m, results)

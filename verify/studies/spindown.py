@@ -20,7 +20,7 @@ import mpmath
 import sympy as sp
 
 from models import get_model
-from models.symbols import STATE, phidot, psidot, theta, thetadot
+from models.symbols import STATE, omega_body, phi, phidot, psidot, theta, thetadot, time_derivative, to_inertial
 
 FAMILIES = ("cm-at-rest", "zero-vertical-spin")
 MODELS = ("disk", "ring")
@@ -47,6 +47,8 @@ class SpinDown:
 
     @property
     def relative_error(self):
+        if self.paper_phidot is None:  # a body with no closed form (body_spindown)
+            return None
         with mpmath.workdps(DPS + 10):  # not at mpmath's global precision
             return self.paper_phidot / self.phidot - 1
 
@@ -65,11 +67,11 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
         raise ValueError(f"unknown family {family!r}; allowed: {', '.join(FAMILIES)}")
     model = get_model(name)
     params = dict(params or {})
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
+    from verify.engine.single import resolve_parameters  # lazy: heyoka (0.4 s): bad input answers first
+    from verify.precision import parse_precision  # lazy: as the line above
 
     resolve_parameters(model, params, parse_precision("double"))  # names and ranges
-    from .thresholds import check_reading
+    from .thresholds import check_reading  # lazy: as the line above
 
     check_reading(params, "spin-down study")
     with mpmath.workdps(DPS + 10):
@@ -113,8 +115,88 @@ def spindown(name: str, theta_value: str, family: str = "cm-at-rest", params=Non
         return SpinDown(name, family, th, shown, rate, psi_rate, E, source, paper, pv)
 
 
+def body_spindown(model, theta_value: str, family: str = "cm-at-rest", params=None) -> SpinDown:
+    """The steady spin-down state of any body of revolution at ``theta_value`` (a decimal string in its domain).
+
+    The families generalise: with thetadot = 0, omega = phidot Z + psidot e3 = (0, phidot sin(theta), phidot cos(theta)
+    + psidot) in the 1-2-3 frame and v_C = -omega x r_P, r_P = (0, r2, r3) (paper Eq. 7), so C is at rest exactly where
+    omega is parallel to r_P: psidot = phidot (r3 sin(theta) - r2 cos(theta))/r2 (the disk's -cos(theta), r2 = -1,
+    r3 = 0; the ring's -(cos(theta) - h sin(theta)), r3 = -h); ``zero-vertical-spin`` is psidot = -phidot/cos(theta)
+    for every body.  On either, row 1 (:func:`models.steady_bodies.row1`: alpha phidot^2 + beta phidot psidot + delta g)
+    gives phidot^2 = -delta g/(alpha + beta ratio), at the working precision of :func:`spindown`.  A second route
+    checks the state: the model's own v_C (its ``velocity_xy``) must vanish on ``cm-at-rest``, and its thetaddot at the
+    state, to 1e-40 of the terms.  The paper's closed form is shown where the body is the disk's (a point rim of
+    radius 1 with I3 = 2 I1: Eq. 45, k = I1) or the ring's (two rims of radius 1: Eq. 61, h = half_thickness);
+    elsewhere ``paper_source`` and ``paper_phidot`` are None.
+    """
+    from models.bodies import contact_vector, resolve  # lazy: only for a body (0.1 s)
+    from models.steady_bodies import row1  # lazy: as the line above
+
+    if family not in FAMILIES:
+        raise ValueError(f"unknown family {family!r}; allowed: {', '.join(FAMILIES)}")
+    body = resolve(model.name.removeprefix("body:"))
+    params = dict(params or {})
+    with mpmath.workdps(DPS + 10):
+        try:
+            th = mpmath.mpf(theta_value)
+        except (ValueError, TypeError):
+            raise ValueError(f"--theta {theta_value!r} is not a number") from None
+        lo, hi = (mpmath.mpf(sp.N(e, DPS + 10)) for e in (model.domain.theta_min, model.domain.theta_max))
+        if not (mpmath.isfinite(th) and lo < th < hi):
+            raise ValueError(f"--theta {theta_value} is outside the domain of {model.name}: "
+                             f"{mpmath.nstr(lo, 6)} < theta < {mpmath.nstr(hi, 6)}")
+        if th < mpmath.mpf(THETA_MIN):
+            raise ValueError(f"--theta {theta_value} is below {THETA_MIN}; allowed: {THETA_MIN} <= theta (the working "
+                             "precision grows as log10(1/theta) digits)")
+        digits = DPS + 10 + max(0, int(mpmath.ceil(-mpmath.log10(th))))
+    _, _, r2, r3 = contact_vector(body)
+    ratio = (r3 * sp.sin(theta) - r2 * sp.cos(theta)) / r2 if family == "cm-at-rest" else -1 / sp.cos(theta)
+    r = row1(model)
+    symbols = [p.symbol for p in model.parameters]
+    with mpmath.workdps(digits):
+        th = mpmath.mpf(theta_value)
+        pv = {p.name: mpmath.mpf(sp.N(sp.nsimplify(params[p.name]) if p.name in params else p.default, digits))
+              for p in model.parameters}
+        args = [pv[p.name] for p in model.parameters]
+        at = lambda e: sp.lambdify([theta] + symbols, e, "mpmath")(th, *args)  # noqa: E731
+        den = r2 if family == "cm-at-rest" else sp.cos(theta)
+        if at(den) == 0:
+            raise ValueError(f"no steady {family} family of {model.name} at theta = {theta_value} "
+                             f"({'the contact is on the axis' if family == 'cm-at-rest' else 'cos(theta) = 0'})")
+        k = at(ratio)
+        alpha, beta, delta, gv = at(r.alpha), at(r.beta), at(r.delta), pv["g"]
+        P = -delta * gv / (alpha + beta * k)
+        if not P > 0:
+            raise ValueError(f"no steady {family} motion of {model.name} at theta = {theta_value} "
+                             f"(phidot^2 = {mpmath.nstr(P, 5)})")
+        rate = mpmath.sqrt(P)
+        state = {theta: th, phidot: rate, psidot: k * rate}
+        values = [state.get(q, mpmath.mpf(0)) for q in STATE] + args
+        f = lambda e: sp.lambdify(list(STATE) + symbols, e, "mpmath")(*values)  # noqa: E731
+        checks = [model.accelerations[0]] + (list(model.velocity_xy) if family == "cm-at-rest" else [])
+        for e in checks:  # the second route: the model's own thetaddot and v_C at the state
+            if abs(f(e)) > mpmath.mpf(10) ** -40 * (1 + rate * rate * (1 + abs(k)) + gv):
+                raise RuntimeError(f"{model.name}: the {family} state at theta = {theta_value} is not steady by the "
+                                   f"model's own equations ({e} = {mpmath.nstr(f(e), 8)})")
+        E = f(model.energy)
+        paper, source = _paper_closed_form(body, pv, th)
+        shown = {n: mpmath.nstr(v, 20) for n, v in pv.items()}
+        return SpinDown(model.name, family, th, shown, rate, k * rate, E, source, paper, pv)
+
+
+def _paper_closed_form(body, pv: dict, th) -> tuple:
+    """(phidot, 'Eq. 45' or 'Eq. 61') where the body is the paper's disk or ring (:func:`body_spindown`), else (None, None)."""
+    profile = body.values
+    if body.kind == "point-rim" and profile.get("radius") == 1 and pv["I3"] == 2 * pv["I1"]:
+        return mpmath.sqrt(pv["g"] / (pv["I1"] * mpmath.sin(th))), "Eq. 45"
+    if body.kind == "two-rims" and profile.get("radius") == 1:
+        h = pv["half_thickness"]
+        return mpmath.sqrt(pv["g"] * (1 - h) / ((h ** 2 + pv["I1"]) * th)), "Eq. 61"
+    return None, None
+
+
 def to_record(s: SpinDown) -> dict:
-    d = lambda x: mpmath.nstr(x, 20, strip_zeros=False)
+    d = lambda x: None if x is None else mpmath.nstr(x, 20, strip_zeros=False)  # noqa: E731
     return {"model": s.model, "family": s.family, "theta": d(s.theta), "params": s.params,
             "phidot": d(s.phidot), "psidot": d(s.psidot), "energy": d(s.energy),
             "paper_formula": s.paper_source, "paper_phidot": d(s.paper_phidot), "relative_error": d(s.relative_error)}
@@ -128,11 +210,9 @@ def _quantity_functions(name: str):
 
     v_P is the velocity of the geometric contact point over the floor: v_C plus the rate of
     the horizontal part of r_P = CP (thetadot = 0 on the family).  w2 is the stability
-    coefficient of the reduced Jacobian (verify/studies/thresholds.py), valid on steady motions.
+    coefficient of the reduced Jacobian (verify/studies/thresholds/linear.py), valid on steady motions.
     """
-    from models.symbols import omega_body, time_derivative, to_inertial
-
-    from .thresholds import jacobian_entries
+    from .thresholds import jacobian_entries  # lazy: heyoka (0.5 s), as in spindown()
 
     model = get_model(name)
     r2 = -1
@@ -151,8 +231,6 @@ def _quantity_functions(name: str):
 
 
 def phi_symbol():
-    from models.symbols import phi
-
     return phi
 
 
@@ -194,7 +272,7 @@ def _omega3(y):
 def precision_runs(label: str, state: dict, precisions=PRECISIONS, turns: int = TURNS) -> list:
     """Integrate ``state`` (decimal strings, disk) for ``turns`` turns of phi at every precision and
     compare the final state with a reference at REFERENCE; one PrecisionRun per precision."""
-    from verify.engine.single import solve
+    from verify.engine.single import solve  # lazy: heyoka (0.4 s), as in spindown()
 
     with mpmath.workdps(80):
         t_end = mpmath.nstr(2 * mpmath.pi * turns / abs(mpmath.mpf(state["phidot"])), 40)

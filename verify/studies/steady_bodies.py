@@ -38,6 +38,7 @@ import mpmath
 import sympy as sp
 
 from models import get_model
+from models.bodies import load, shipped
 from models.steady_bodies import (
     DPS,
     domain,
@@ -394,16 +395,18 @@ def table(records) -> str:
 
 def main(argv=None) -> int:
     """``python -m verify.studies.steady_bodies [BODY ...] [--param NAME=VALUE] [--format json]``."""
-    from models.bodies import shipped
-
+    # a curve body (models.profile_curve) is left out of the default: sympy's analysis of its trigonometric
+    # polynomials ran for more than ten minutes on the egg; name it to run it
+    default = [n for n in shipped() if load(n).kind != "curve"]
     parser = argparse.ArgumentParser(prog="python -m verify.studies.steady_bodies", description=main.__doc__)
-    parser.add_argument("bodies", nargs="*", help=f"shipped bodies (default: all): {', '.join(shipped())}")
+    parser.add_argument("bodies", nargs="*", help=f"shipped bodies (default: {', '.join(default)}; a curve body such "
+                                                  "as egg only by name: slow)")
     parser.add_argument("--param", action="append", default=[], metavar="NAME=VALUE")
     parser.add_argument("--format", choices=("table", "json"), default="table")
     args = parser.parse_args(argv)
     params = dict(p.split("=", 1) for p in args.param)
     records = []
-    for name in args.bodies or shipped():
+    for name in args.bodies or default:
         records.extend(thresholds(get_model(name if name.startswith("body:") else f"body:{name}"), params))
     print(json.dumps([r.as_dict() for r in records], indent=1) if args.format == "json" else table(records))
     return 0

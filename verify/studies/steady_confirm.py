@@ -29,6 +29,7 @@ import sympy as sp
 
 from models.steady_bodies import DPS, domain, parameter_values, steady_state, turned_over
 from models.symbols import phidot, psidot, theta
+from verify.engine.single import solve
 
 from .steady_bodies import Record, _model, sleeping_form, stability_form
 from .thresholds import GROWTH, OMEGA3
@@ -86,8 +87,6 @@ def start(model, record: Record, rate, tilt, params: Optional[dict] = None) -> t
 
 def run(model, record: Record, rate, tilt="1e-4", params: Optional[dict] = None, t_end="10") -> Run:
     """The run at ``rate`` from the steady motion with theta perturbed by ``tilt`` (module docstring)."""
-    from verify.engine.single import solve
-
     model = _model(model)
     state, th0 = start(model, record, rate, tilt, params)
     sol = solve(model, t_end, state, params, n_eval=401)

@@ -14,15 +14,18 @@ from __future__ import annotations
 import math
 
 import mpmath
+import numpy as np
 
 from models import ring as ring_body
 from models.common import PAPER_G
 from models.steady import ring_theta0_limits, steady_state
+from verify.engine.single import solve
 from verify.precision import parse_precision
 
 from .spindown import FAMILIES, family_quantities, family_state, precision_runs, spindown
 from .finite_offset import ERRATUM, QUALIFIED, finite_offset_verdict
-from .thresholds import GROWTH, bracket, linear_path, nonlinear_path, threshold, variational_w2
+from .maps import stability_map, switch_bracket
+from .thresholds import GROWTH, bracket, linear_deviation, linear_path, nonlinear_path, threshold, variational_w2
 
 #: The parameter set of "the paper's ring" in every row below, and the one it is compared with.
 RING_SET, RING_OTHER_SET = "printed", "annular"
@@ -221,10 +224,6 @@ def _verdict(caption_stable: bool, linearly_stable: bool, rate, crit, outcomes=(
 
 def caption_rows() -> list:
     """The captions of Figs. 5, 10, 11, 18, 19 against the exact thresholds (and Olsson's)."""
-    from verify.engine.single import solve
-
-    from .thresholds import linear_deviation
-
     g = mpmath.mpf(PAPER_G)
     root_g = mpmath.sqrt(g)
     rows = []
@@ -333,10 +332,6 @@ def map_row(model: str, motion: str) -> tuple:
     results.json (its figure's file name under ``figures/`` included), the
     :class:`~verify.studies.maps.StabilityMap`, for the figure, and the wall time.
     """
-    import numpy as np
-
-    from .maps import stability_map, switch_bracket
-
     params = dict(ring_body.parameter_set("printed")) if model == "ring" else None  # the paper's own ring
     lin = float(threshold(model, motion, params).value)
     smap = stability_map(model, motion, rates=np.linspace(0.5 * lin, 1.5 * lin, 100), tilts=np.logspace(-6, -1, 100),

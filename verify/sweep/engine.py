@@ -1,11 +1,12 @@
-"""Run one chunk of a sweep on the batch engine (:mod:`verify.engine.batch`), then its rows.
+"""Run one chunk of a sweep through the batch road (:class:`verify.engine.ensemble.Ensemble`), then its rows.
 
 The full state (theta, phi, psi, thetadot, phidot, psidot, x, y), plus the work W of a
-dissipative term when the model has one, is integrated in double by
-:func:`verify.engine.batch.propagate_grid`: SIMD lanes within a batch integrator, batches on
-threads.  Parameters are runtime ``par[i]`` (the model's, in model order, then the per-lane
-bookkeeping: reason, t_stop, alive, and theta_stop when the spec has a ``[stop]``), so one
-compiled integrator serves every point of every sweep of the model.
+dissipative term when the model has one, is integrated in double by the spec's ensemble
+(:func:`ensemble_of`): SIMD lanes within a batch integrator, batches on threads.  Parameters are
+runtime ``par[i]`` laid out by name (:class:`verify.engine.lanes.LaneLayout`: the model's, then the
+per-lane records alive, reason, t_stop, and theta_stop with a ``[stop]`` or else theta_max), so one
+compiled integrator serves every point of every sweep of the model; the model is resolved once
+per process (one ``get_model``), g for the step cap is the model's own.
 
 Terminal events freeze their own lane (:class:`verify.engine.batch.Freeze`): the lane is parked
 in the middle of the model's domain (thetadot = psidot = 0, phidot = 1: a rocking rate of
@@ -16,7 +17,7 @@ and the loss of contact (N = 0) where the model has a contact.
 
 With a friction coefficient (``[params] friction`` or an axis) the system has one more event,
 ``slips``, built from the single engine's own function (:func:`verify.engine.compile.slip_event_function`)
-on the same unscaled accelerations as ``contact_lost``, the coefficient in a per-lane parameter;
+on the same unscaled accelerations as ``contact_lost``, the coefficient in the lane parameter ``friction``;
 the event's callback keeps theta at the event time in another before it parks the lane.  A run
 records ``slipped`` (1 when ``slips`` stopped it, else 0), ``t_slip`` and ``theta_at_slip`` (NaN
 when it did not slip); ``max_friction_required_on_grid`` is the largest mu_req = |F_h|/N on the
@@ -26,7 +27,11 @@ stop needing more than its coefficient (the slack of :data:`verify.engine.failur
 
 The reductions of a chunk are computed for all its lanes at once (numpy over the lanes' samples;
 the diagnostics by one compiled call per chunk, bit for bit as one call per run), and only the
-quantities asked for: the senses of the orbit only when one of them is recorded.
+quantities asked for.  They are what the samples hold -- extremes and final values, the drift of
+E + W, the largest mu_req -- not what they mean: the senses of the orbit and the spin
+(:data:`verify.sweep.spec.SENSE_KEYS`) are a study's reading of a run, :func:`verify.studies.orbits.senses`,
+which the caller passes as ``senses=`` and this module calls run by run when one of them is
+recorded (the sweep imports no study: :func:`check_readings` refuses the spec without it).
 
 Every point's result depends on its own inputs only (lanes do not interact; their step sizes
 are their own), so a chunk gives the same rows in any process, on threads or on a Dask
@@ -56,139 +61,45 @@ quantities (white on a map, never data), as in ``solve``:
 * ``failed:step_size_collapse`` -- the run needed more than COLLAPSE_FACTOR (t_end x the fastest
   initial rate) steps, i.e. its steps averaged below 2^-15 of the step cap, as in ``solve``.
 
-A batch in which any of these happens (or any heyoka warning in the chunk, which names a lane but
-not its batch) is integrated again lane by lane, each lane alone in a batch of copies of itself:
-lanes are independent, so a good lane gets the same bits it got in the mixed batch, and a failed
-lane is told apart from its neighbours.
+A batch in which any of these happens (or any heyoka warning in its group of :data:`REDUCE_GROUP`
+batches, which names a lane but not its batch) is integrated again lane by lane, each lane alone in a
+batch of copies of itself: lanes are independent, so a good lane gets the same bits it got in the mixed
+batch, and a failed lane is told apart from its neighbours.  A chunk's groups are integrated one after
+the other, each while the one before is reduced; before any lane is run again alone the remaining
+groups are finished first, so that the messages heyoka writes during it are its own.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
-import heyoka as hy
 import mpmath
 import numpy as np
-import sympy as sp
 
-from models import get_model
-from models.common import PAPER_G
 from models.ring_dissipation import annulus_inertia
-from models.symbols import ACCELERATIONS, STATE, STATE_NAMES, phidot, psidot, theta
+from models.steady import steady_state
+from models.symbols import STATE_NAMES
 
-from ..circling import circling, theta_maxima
 from ..engine import batch, validation
-from ..engine.batch import Freeze as _Freeze  # noqa: F401  (patched by a negative control of the guard)
-from ..engine.compile import FRICTION, contact_event, friction_function, slip_event_function, symbol_map, to_heyoka
-from ..engine.failures import SLIP_SLACK_EPS
-from ..engine.single import COLLAPSE_FACTOR
+from ..engine.ensemble import Ensemble, ensemble, g_of, resolve
 from ..engine.lanes import simd_width
+from ..engine.single import COLLAPSE_FACTOR
 from ..precision import parse_precision
 from .spec import FRICTION as FRICTION_AXIS
-from .spec import SENSE_KEYS, InvalidPoint, SweepSpec
+from .spec import RATE_AXIS, SENSE_KEYS, InvalidPoint, SpecError, SweepSpec
 
-#: Per-lane parameters after the model's: the last is [stop] theta_below, or without a [stop] the domain's upper end
-EXTRA = ("alive", "reason", "t_stop", "theta_stop or theta_max")
-#: With a friction coefficient, two more: theta where an event froze the lane (a record, read by no expression:
-#: it sits below the coefficient, which the event ``slips`` reads), then the coefficient
-FRICTION_EXTRA = ("theta_at_stop", "friction")
-WINDOWS = 20  # a run without nutation is read over 20 equal windows
-NUTATIONS_PER_WINDOW = 12  # otherwise over windows of 12 nutations (see orbit_windows)
-NUTATION_FLOOR = 1e-9  # rad: a theta spread below this is no nutation
-#: Batches reduced together: enough lanes for numpy to pay, few enough that a chunk's samples are
-#: held about once (the store's memory estimate assumes 1.5 times the dense output).
+#: Batches integrated and reduced together, one group reduced while the next integrates: enough lanes
+#: for numpy to pay, few enough that a chunk's samples are held about once (the store's memory estimate
+#: assumes 1.5 times the dense output).
 REDUCE_GROUP = 16
-TH, PH, PS, THD, PHD, PSD, X, Y = range(8)
+TH = STATE_NAMES.index("theta")  # theta's row of a chunk's states and column of a run's samples
 
 
-@dataclass(frozen=True)
-class System:
-    """A model's batch system with freezing and its reductions, compiled once per process."""
-
-    model: str
-    events: tuple  # names of the compiled events, reason code = index + 1
-    n_model_pars: int
-    n_states: int  # 8, or 9 with W
-    lanes: batch.Lanes  # where alive, reason and t_stop are among a lane's parameters
-    n_pars: int  # per lane: the model's, reason, t_stop, alive (and theta_stop with [stop])
-    template: object  # taylor_adaptive_batch
-    diagnostics: batch.ScalarTwin  # (omega_z, the energy's additive terms...) of the state
-    normal_force: object  # batch.ScalarTwin of N/(Mg), or None (no contact)
-    theta_at_stop: int = None  # the parameter holding theta at the event that froze the lane (with a coefficient)
-    friction: int = None  # the parameter holding the friction coefficient (with one)
-
-
-@lru_cache(maxsize=None)
-def system(model_name: str, batch_size: int, cooldown: float, stop: bool = False, friction: bool = False) -> System:
-    """The batch system of a model; the ``theta_stop`` event only with ``stop`` (a spec's [stop]), the
-    ``slips`` event only with ``friction`` (a spec's coefficient), each where the spec asks for it: an
-    event costs on every step."""
-    model = get_model(model_name)
-    variables = list(hy.make_vars(*STATE_NAMES))
-    mapping = dict(zip(STATE, variables))
-    n = len(model.parameters)
-    mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    lanes = batch.Lanes(alive=n, reason=n + 1, t_stop=n + 2)
-    alive, last = hy.par[n], hy.par[n + 3]
-    unscaled = [to_heyoka(r, mapping) for _, r in model.rhs()]
-    rhs = [r * alive for r in unscaled]
-    sys_ = list(zip(variables, rhs))
-    if model.dissipation is not None:
-        W = hy.make_vars("W")
-        sys_.append((W, to_heyoka(model.dissipation, mapping) * alive))
-        variables.append(W)
-    th = variables[0]
-    dom = model.domain
-    lo, hi = float(dom.theta_min), float(dom.theta_max)
-    if stop:
-        exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - hi, hy.event_direction.positive),
-                 ("theta_stop", th - last, hy.event_direction.negative)]
-    else:  # no theta_stop event; the upper end is read from par[n + 3]: heyoka sizes the parameters by
-        # the highest one read, and the records reason and t_stop below it must exist
-        exprs = [(dom.below, th - lo, hy.event_direction.negative), (dom.above, th - last, hy.event_direction.positive)]
-    normal = None
-    if model.normal_force is not None:
-        # the event reads the system's own accelerations (rows thetadot, phidot, psidot) so that
-        # heyoka's decomposition computes them once (verify.engine.compile.contact_event)
-        exprs.append(("contact_lost", contact_event(model, mapping, [unscaled[i] for i in (THD, PHD, PSD)]),
-                      hy.event_direction.negative))
-        normal = batch.ScalarTwin(validation.normal_force_function(model_name), hy.cfunc(
-            [to_heyoka(model.normal_force, symbol_map(model, variables[:8]))], variables[:8], batch_size=1))
-    record = ()
-    if friction:
-        # the single engine's event function (verify.engine.compile.slip_event_function), on the same
-        # unscaled accelerations as contact_lost; last, so the other events keep their codes
-        at_stop, coefficient = n + len(EXTRA), n + len(EXTRA) + 1
-        slip_map = {**mapping, FRICTION: hy.par[coefficient],
-                    **dict(zip(ACCELERATIONS, [unscaled[i] for i in (THD, PHD, PSD)]))}
-        exprs.append(("slips", to_heyoka(slip_event_function(model), slip_map), hy.event_direction.positive))
-        record = ((TH, at_stop),)
-    safe = 0.5 * (lo + hi)
-    # a frozen lane is parked mid-domain with phidot = 1, not 0: |omega_perp| terms (sqrt) have no
-    # Taylor series at 0
-    park = ((TH, safe), (THD, 0.0), (PSD, 0.0), (PHD, 1.0))
-    state = np.zeros(len(variables))
-    state[TH] = safe
-    n_pars = n + len(EXTRA) + (len(FRICTION_EXTRA) if friction else 0)
-    template = batch.batch_system(sys_, exprs, lanes, n_pars, batch_size, cooldown, state,
-                                  [float(sp.N(p.default)) for p in model.parameters], park=park, record=record)
-    omega_z = phidot + psidot * sp.cos(theta)
-    fmap = dict(zip(STATE, variables[:8]))
-    fmap.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
-    terms = sp.Add.make_args(sp.expand(model.energy))  # the drift is judged against the sum of their magnitudes
-    diag = batch.ScalarTwin.of([to_heyoka(omega_z, fmap)] + [to_heyoka(t, fmap) for t in terms], variables[:8])
-    return System(model_name, tuple(e[0] for e in exprs), n, len(variables), lanes, n_pars, template, diag, normal,
-                  n + len(EXTRA) if friction else None, n + len(EXTRA) + 1 if friction else None)
-
-
-@lru_cache(maxsize=None)
-def friction_twin(model_name: str) -> batch.ScalarTwin:
-    """(N/(Mg), mu_req = |F_h|/N) of a rolling model as a :class:`verify.engine.batch.ScalarTwin` (the
-    cfunc ``solve`` reads ``friction_required`` with, and its scalar build), in double."""
-    model, dbl = get_model(model_name), parse_precision("double")
-    return batch.ScalarTwin(friction_function(model, dbl).function, friction_function(model, dbl, 1).function)
-
+def ensemble_of(spec: SweepSpec, batch_size: int) -> Ensemble:
+    """The spec's :class:`verify.engine.ensemble.Ensemble`: the full form, the ``theta_stop`` event only with a
+    ``[stop]``, ``slips`` only with a friction coefficient (an event costs on every step), a cooldown
+    longer than the run; one per process and settings, so the model is resolved once."""
+    return ensemble(spec.model, "full", batch_size, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None, spec.slips)
 
 
 # --- inputs of a chunk ---------------------------------------------------------------------------
@@ -206,14 +117,6 @@ def friction_column(spec: SweepSpec, indices):
     return spec.columns(idx)[FRICTION_AXIS]
 
 
-def friction_needed(model_name: str, states, pars) -> np.ndarray:
-    """mu_req = |F_h|/N at each column of ``states`` (8, n) with per-column ``pars``; NaN where N <= 0."""
-    fn = friction_function(get_model(model_name), parse_precision("double"))
-    kwargs = {"pars": np.ascontiguousarray(pars[: fn.n_pars], dtype=float)} if fn.n_pars else {}
-    normal, need = fn.function(np.ascontiguousarray(states[:8], dtype=float), **kwargs)
-    return np.where(normal > 0, need, np.nan)
-
-
 def lane_inputs(spec: SweepSpec, indices) -> tuple:
     """(states (8, n), model parameters (n_pars, n), theta_ref (n)) of the points ``indices``.
 
@@ -221,19 +124,18 @@ def lane_inputs(spec: SweepSpec, indices) -> tuple:
     Raises :class:`InvalidPoint` for the first point whose parameters are invalid (or whose
     steady motion does not exist); the start as a whole is checked by :func:`point_problems`.
     """
-    states, pars, refs, problems = _inputs(spec, indices)
+    states, pars, refs, problems = _inputs(spec, indices, ensemble_of(spec, simd_width()).model)
     if problems:
         raise _refusal(spec, np.asarray(indices, dtype=np.int64), problems[0])
     return states, pars, refs
 
 
-def _inputs(spec: SweepSpec, indices) -> tuple:
+def _inputs(spec: SweepSpec, indices, model) -> tuple:
     """lane_inputs without raising: (states, pars, refs, [(column, reason, message)]) -- the
     columns of points with bad parameters are NaN.  Vectorised over the points: the parameters
     are resolved once per distinct combination, the steady motion once per distinct rate."""
     idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)
     n = len(idx)
-    model = get_model(spec.model)
     cols = spec.columns(idx)
     problems = []
     # parameters: [params], then the parameter axes (and w), once per distinct combination
@@ -263,8 +165,6 @@ def _inputs(spec: SweepSpec, indices) -> tuple:
             states[STATE_NAMES.index(a.name)] = cols[a.name]
     refs = states[TH].copy()  # start.get("theta", 0.0)
     if spec.steady is not None:
-        from .spec import RATE_AXIS
-
         rate = cols[RATE_AXIS[spec.steady]]
         keys = np.stack([inverse.astype(float), rate], axis=1)
         groups, gfirst, ginv = np.unique(keys, axis=0, return_index=True, return_inverse=True)
@@ -297,8 +197,8 @@ def _inputs(spec: SweepSpec, indices) -> tuple:
 
 @lru_cache(maxsize=4096)
 def _resolved(model_name: str, geometry, items: tuple) -> tuple:
-    """(parameter values in model order, the parameters as decimal strings) of one combination."""
-    model = get_model(model_name)
+    """(parameter values in model order, by name, and the parameters as decimal strings) of one combination."""
+    model = resolve(model_name)
     values = dict(items)
     values.pop("tilt", None)
     if geometry == "annulus":
@@ -309,13 +209,11 @@ def _resolved(model_name: str, geometry, items: tuple) -> tuple:
             values["w"] = ww
     text = {k: repr(float(v)) for k, v in values.items()}
     resolved = validation.parameters(model, text, parse_precision("double"))
-    return tuple(float(v) for v in resolved.values()), tuple(text.items())
+    return tuple(float(resolved[name]) for name in model.parameter_names), tuple(text.items())
 
 
 @lru_cache(maxsize=4096)
 def _steady_cached(model: str, motion: str, rate: str, params: tuple) -> dict:
-    from models.steady import steady_state
-
     s = steady_state(model, motion, rate, dict(params))
     with mpmath.workdps(40):
         return {k: float(mpmath.mpf(v)) for k, v in s.items()}
@@ -328,23 +226,24 @@ def point_problems(spec: SweepSpec, indices) -> list:
     domain, the model's constraints, N > 0), plus theta above ``[stop] theta_below``.
     """
     idx = np.asarray(indices if isinstance(indices, np.ndarray) else list(indices), dtype=np.int64)
-    return _problems(spec, idx, *_inputs(spec, idx))
+    ens = ensemble_of(spec, simd_width())
+    return _problems(spec, ens, idx, *_inputs(spec, idx, ens.model))
 
 
-def _problems(spec: SweepSpec, idx, states, pars, refs, problems) -> list:
-    model = get_model(spec.model)
+def _problems(spec: SweepSpec, ens: Ensemble, idx, states, pars, refs, problems) -> list:
+    model = ens.model
     problems = list(problems)
     good = ~np.isnan(pars).any(axis=0) if len(model.parameters) else np.ones(len(idx), bool)
     cols = np.flatnonzero(good)
     if len(cols):
         sub, psub = states[:, cols], pars[:, cols]
-        normal = validation.normal_force_columns(spec.model, sub, psub)
+        normal = ens.normal_force_columns(sub, psub)
         found = validation.start_problems(model, sub, normal)
         for j, reason, message in found:
             problems.append((int(cols[j]), reason, message))
         mu = friction_column(spec, idx)
         if mu is not None:  # as solve refuses a start that already needs the coefficient (validation._slip_problem)
-            need = friction_needed(spec.model, sub, psub)
+            need = ens.friction_needed(sub, psub)
             bad = {j for j, _, _ in found}
             for j in np.flatnonzero(~(need < mu[cols])):
                 if int(j) not in bad:
@@ -389,86 +288,127 @@ def validate_points(spec: SweepSpec, block: int = VALIDATION_BLOCK) -> None:
             raise _invalid(spec, index, reason, message)
 
 
-def fastest_rate(spec: SweepSpec) -> float:
-    """The largest initial rate over the whole sweep (or sqrt(g)): the step cap is 1 / it, as in solve()."""
+def fastest_rate(spec: SweepSpec, ens: Ensemble = None) -> float:
+    """The largest initial rate over the whole sweep, or sqrt(g) with the model's own largest g: the step
+    cap is 1 / it, as in solve() (over the sweep, not the chunk, so that a row does not depend on the chunking)."""
+    ens = ens or ensemble_of(spec, simd_width())
     rates = [spec.start.get(n, 0.0) for n in ("thetadot", "phidot", "psidot")]
     for a in spec.axes:
         if a.name in ("thetadot", "phidot", "psidot"):  # a monotone axis: its ends are its extremes
             rates += list(a.values.extremes)
-    g = spec.params.get("g", float(PAPER_G))
+    g = g_of(ens.model, spec.params)
     for a in spec.axes:
         if a.name == "g":
             g = a.values.extremes[1]
-    return batch.fastest_rate(rates, g)
+    return ens.fastest_rate(rates, g)
 
 
-def step_budget(spec: SweepSpec) -> int:
+def step_budget(spec: SweepSpec, ens: Ensemble = None) -> int:
     """The most steps a run may take: COLLAPSE_FACTOR (t_end x the fastest rate) (see the module docstring)."""
-    return int(COLLAPSE_FACTOR * spec.t_end * fastest_rate(spec)) + COLLAPSE_FACTOR
+    return int(COLLAPSE_FACTOR * spec.t_end * fastest_rate(spec, ens)) + COLLAPSE_FACTOR
 
 
 # --- a chunk ---------------------------------------------------------------------------------------
 
-def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = None) -> list:
-    """The rows of chunk ``chunk``: one dict per point with its inputs, outcome and quantities."""
+def check_readings(spec: SweepSpec, senses) -> None:
+    """Refuse, with a :class:`SpecError` naming the quantity, a spec that records a sense of the orbit
+    (:data:`verify.sweep.spec.SENSE_KEYS`) when no reading of them, ``senses``, is given (module docstring)."""
+    wanted = [q for q in spec.record if q in SENSE_KEYS]
+    if wanted and senses is None:
+        raise SpecError(f"sweep {spec.name!r} records {wanted[0]!r}, a sense of the orbit read from each run's "
+                        "samples by a study: pass senses=verify.studies.orbits.senses to run_sweep or run_chunk "
+                        "(python -m verify sweep does)")
+
+
+def run_chunk(spec: SweepSpec, chunk: int, threads: int = 1, batch_size: int = None, senses=None) -> list:
+    """The rows of chunk ``chunk``: one dict per point with its inputs, outcome and quantities.
+
+    ``senses``: the reading of the orbit's and the spin's senses, ``senses(t, y, omega_z) -> dict`` over
+    :data:`verify.sweep.spec.SENSE_KEYS` (:func:`verify.studies.orbits.senses`), called on each run's
+    samples up to its stop; needed only when the spec records one of them (:func:`check_readings`).
+    """
+    check_readings(spec, senses)
     indices = list(spec.chunk_points(chunk))
     if not indices:
         raise ValueError(f"chunk {chunk} is outside the sweep's {spec.n_chunks} chunks")
     bs = batch_size or simd_width()
-    sysm = system(spec.model, bs, 2.0 * spec.t_end + 1.0, spec.theta_stop is not None, spec.slips)
+    ens = ensemble_of(spec, bs)
     idx = np.asarray(indices, dtype=np.int64)
-    inputs = _inputs(spec, idx)
-    problems = _problems(spec, idx, *inputs)  # validated before the store was made; a worker checks again
+    inputs = _inputs(spec, idx, ens.model)
+    problems = _problems(spec, ens, idx, *inputs)  # validated before the store was made; a worker checks again
     if problems:
         raise _invalid(spec, *problems[0])
     states, model_pars, refs, _ = inputs
-    n, m = len(indices), sysm.n_model_pars
+    n = len(indices)
+    lanes = ens.lanes
     pad = batch.pad_lanes(n, bs)
-    lane_states = np.zeros((sysm.n_states, len(pad)))
+    lane_states = np.zeros((len(lanes.states), len(pad)))
     lane_states[:8] = states[:, pad]
-    lane_pars = np.zeros((sysm.n_pars, len(pad)))
-    lane_pars[:m] = model_pars[:, pad]
-    lane_pars[sysm.lanes.alive] = 1.0
-    lane_pars[sysm.lanes.t_stop] = np.nan
-    stop = spec.theta_stop
-    lane_pars[m + 3] = stop if stop is not None else float(get_model(spec.model).domain.theta_max)
+    settings = {**ens.model_values(model_pars[:, pad])}
+    if spec.theta_stop is not None:
+        settings["theta_stop"] = spec.theta_stop
+    else:
+        settings["theta_max"] = float(ens.model.domain.theta_max)
     if spec.slips:
-        lane_pars[sysm.theta_at_stop] = np.nan
-        lane_pars[sysm.friction] = friction_column(spec, idx)[pad]
+        settings["friction"] = friction_column(spec, idx)[pad]
+    lane_pars = ens.parameters(len(pad), settings)
     grid = np.linspace(0.0, spec.t_end, spec.samples)
-    options = {"max_delta_t": batch.step_cap([fastest_rate(spec)]), "max_steps": step_budget(spec)}
+    options = {"max_delta_t": 1.0 / fastest_rate(spec, ens), "max_steps": step_budget(spec, ens)}
 
-    (batches, messages), = batch.propagate_grid(sysm.template, lane_states, lane_pars, grid, threads, **options)
+    run = _GroupRun(spec, ens, idx, indices, grid, lane_states, lane_pars, model_pars, refs, options, senses)
     rows = []
-    for first in range(0, len(batches), REDUCE_GROUP):  # a group at a time: memory stays near the output's
-        group = batches[first:first + REDUCE_GROUP]
-        lanes = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
-        samples = np.empty((len(grid), sysm.n_states, len(lanes)))
-        final_pars = np.empty((lane_pars.shape[0], len(lanes)))
+    groups = ens.propagate(lane_states, lane_pars, grid, threads, REDUCE_GROUP, **options)
+    for batches, messages in groups:  # a group at a time, the next one integrating meanwhile
+        if messages or not all(_batch_ok(b, len(grid)) for b in batches):
+            # some lane is run again alone (module docstring): only once nothing else runs, so that
+            # heyoka's messages during it are its own
+            for later, later_messages in [(batches, messages)] + list(groups):
+                rows += run.rows(later, later_messages)
+            break
+        rows += run.rows(batches, messages)
+    return rows
+
+
+class _GroupRun:
+    """The rows of one group of a chunk's batches: samples gathered (failed lanes run again alone), reduced."""
+
+    def __init__(self, spec, ens, idx, indices, grid, lane_states, lane_pars, model_pars, refs, options, senses):
+        self.spec, self.ens, self.idx, self.indices, self.grid = spec, ens, idx, indices, grid
+        self.lane_states, self.lane_pars, self.model_pars, self.refs = lane_states, lane_pars, model_pars, refs
+        self.options, self.senses, self.n = options, senses, len(indices)
+
+    def rows(self, group, messages) -> list:
+        ens, grid, n = self.ens, self.grid, self.n
+        cols_group = np.arange(group[0].columns.start, min(group[-1].columns.stop, n))
+        g = len(grid)  # (states, lanes, grid and each lane's padding to whole SIMD groups: Ensemble.sample_row)
+        samples = np.empty((len(ens.lanes.states), len(cols_group), ens.sample_row(g)))
+        final_pars = np.empty((self.lane_pars.shape[0], len(cols_group)))
         failed = {}  # lane -> (outcome, time)
         for b in group:
             cols = np.arange(b.columns.start, min(b.columns.stop, n))
-            at = cols - lanes[0]
+            if not len(cols):
+                continue  # padding only
+            at = cols - cols_group[0]
             if not messages and _batch_ok(b, len(grid)):
-                samples[:, :, at] = b.output[:, :, : len(cols)]
+                samples[:, at[0]:at[-1] + 1, :g] = np.transpose(b.output[:, :, : len(cols)], (1, 2, 0))
                 final_pars[:, at] = b.local.pars[:, : len(cols)]
                 continue
             for k, j in zip(cols, at):  # again, each lane alone (module docstring)
-                one, warned = batch.alone(sysm.template, grid, lane_states[:, k], lane_pars[:, k], **options)
-                failure = batch.lane_failure(one, 0, sysm.lanes, warned)
+                one, warned = ens.alone(grid, self.lane_states[:, k], self.lane_pars[:, k], **self.options)
+                failure = ens.failure(one, 0, warned)
                 if failure is not None:
                     failed[j] = failure
                     continue
-                samples[:, :, j] = one.output[:, :, 0] if one.output.shape[0] == len(grid) else np.nan
+                samples[:, j, :g] = one.output[:, :, 0].T if one.output.shape[0] == g else np.nan
                 final_pars[:, j] = one.local.pars[:, 0]
-        for i in range(first, first + len(group)):
-            batches[i] = None  # its output is copied: let it go
-        good = np.array([j not in failed for j in range(len(lanes))])
-        reduced = iter(_reduce(spec, sysm, idx[lanes[good]], grid, samples[:, :, good], final_pars[:, good],
-                               model_pars[:, lanes[good]], refs[lanes[good]]))
-        rows += [_failed_row(spec, indices[lanes[j]], *failed[j]) if j in failed else next(reduced)
-                 for j in range(len(lanes))]
-    return rows
+        samples[:, :, g:] = samples[:, :, g - 1:g]  # each lane's padding: its last sample
+        good = np.array([j not in failed for j in range(len(cols_group))])
+        kept = samples if good.all() else np.ascontiguousarray(samples[:, good])
+        chosen = cols_group[good]
+        reduced = iter(_reduce(self.spec, ens, self.idx[chosen], grid, kept, final_pars[:, good],
+                               self.model_pars[:, chosen], self.refs[chosen], self.senses))
+        return [_failed_row(self.spec, self.indices[cols_group[j]], *failed[j]) if j in failed else next(reduced)
+                for j in range(len(cols_group))]
 
 
 def _batch_ok(b: batch.Batch, n_grid: int) -> bool:
@@ -484,248 +424,64 @@ def _failed_row(spec: SweepSpec, index: int, outcome: str, t_stop: float) -> dic
     return row
 
 
-def _segments(samples, lengths) -> np.ndarray:
-    """The first ``lengths[l]`` samples of every lane l, lane after lane: (sum(lengths), n_states)."""
-    lanes = np.moveaxis(samples, 2, 0)  # (lanes, grid, states)
-    return lanes[np.arange(samples.shape[0])[None, :] < np.asarray(lengths)[:, None]]
-
-
-def _guard(spec: SweepSpec, sysm: System, grid, samples, model_pars, stopped, t_stop, friction=None) -> list:
-    """Per lane, (outcome, time) of the first sample that should not exist, or None (module docstring).
-
-    Every sample before the lane's stop must be finite, inside the domain, above ``[stop]
-    theta_below``, at N > 0 and, with a coefficient (``friction``, per lane), need no more than it
-    (within :data:`verify.engine.failures.SLIP_SLACK_EPS`, as ``solve``'s guard); at a sample on
-    the stop time itself the stopping event's own function is ~0, so the samples checked are those
-    strictly before it.
-    """
-    n_lanes = samples.shape[2]
-    checked = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="left")), len(grid))
-    inside = np.arange(len(grid))[:, None] < checked[None, :]  # (grid, lanes)
-    finite = np.isfinite(samples[:, :8, :]).all(axis=1) | ~inside
-    out = [None] * n_lanes
-    for k in np.flatnonzero(~finite.all(axis=0)):
-        out[k] = ("failed:non_finite", float(grid[np.argmin(finite[:, k])]))
-    model = get_model(spec.model)
-    lo, hi = float(model.domain.theta_min), float(model.domain.theta_max)
-    th = samples[:, TH, :]
-    with np.errstate(invalid="ignore"):
-        ok = (lo < th) & (th < hi)
-        if spec.theta_stop is not None:
-            ok &= th > spec.theta_stop
-    finite_lanes = finite.all(axis=0)
-    if sysm.normal_force is not None and finite_lanes.any():
-        lanes = np.flatnonzero(finite_lanes)
-        lengths = checked[lanes]
-        points = _segments(samples[:, :8, lanes], lengths)
-        normal = batch.per_run(sysm.normal_force, points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
-                               lengths)[0]
-        positive = np.ones((len(lanes), len(grid)), bool)
-        positive[np.arange(len(grid))[None, :] < lengths[:, None]] = normal > 0
-        ok[:, lanes] &= positive.T
-        if friction is not None:
-            need = batch.per_run(friction_twin(spec.model), points.T, np.repeat(model_pars[:, lanes], lengths, axis=1),
-                                 lengths)[1]
-            mu = np.repeat(friction[lanes], lengths)
-            within = np.ones((len(lanes), len(grid)), bool)
-            with np.errstate(invalid="ignore"):  # NaN where N <= 0, refused above
-                within[np.arange(len(grid))[None, :] < lengths[:, None]] = ~(
-                    need > mu + SLIP_SLACK_EPS * np.finfo(float).eps * np.maximum(1.0, mu))
-            ok[:, lanes] &= within.T
-    ok |= ~inside
-    for k in np.flatnonzero(finite_lanes & ~ok.all(axis=0)):
-        out[k] = ("failed:event_detection", float(grid[np.argmin(ok[:, k])]))
-    return out
-
-
-def _reduce(spec: SweepSpec, sysm: System, indices, grid, samples, final_pars, model_pars, refs) -> list:
-    """The rows of lanes that ran to their end, from their samples (grid, states, lanes) at once."""
-    reason = final_pars[sysm.lanes.reason].astype(int)
+def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, model_pars, refs, senses) -> list:
+    """The rows of lanes that ran to their end, from their samples (states, lanes, grid) at once; a lane
+    that breaks a guard (:meth:`verify.engine.ensemble.Ensemble.guard`) gets a failed row; ``senses``
+    reads each run's samples when the spec records a sense (:func:`run_chunk`)."""
+    reason = ens.record(final_pars, "reason").astype(int)
     stopped = reason != 0
-    t_stop = final_pars[sysm.lanes.t_stop]
+    t_stop = ens.record(final_pars, "t_stop")
     kept = np.where(stopped, np.maximum(1, np.searchsorted(grid, t_stop, side="right")), len(grid))
-    friction = final_pars[sysm.friction] if sysm.friction is not None else None
-    guarded = _guard(spec, sysm, grid, samples, model_pars, stopped, t_stop, friction)
+    friction = ens.record(final_pars, "friction") if spec.slips else None
+    guarded = ens.guard(grid, samples, model_pars, stopped, t_stop, spec.theta_stop, friction)
     rows = [None] * len(indices)
     for k, failure in enumerate(guarded):
         if failure is not None:
             rows[k] = _failed_row(spec, int(indices[k]), *failure)
-    lanes = np.array([k for k in range(len(indices)) if rows[k] is None], dtype=np.int64)
-    if not len(lanes):
+    if all(r is not None for r in rows):
         return rows
-    lengths = kept[lanes]
-    starts = np.cumsum(lengths) - lengths
-    ends = starts + lengths - 1
-    y = _segments(samples[:, :, lanes], lengths)
-    diag = batch.per_run(sysm.diagnostics, np.ascontiguousarray(y[:, :8].T),
-                         np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
-    omega_z, terms = diag[0], diag[1:]
-    energy, scale = terms.sum(axis=0), np.abs(terms).sum(axis=0)
-    work = y[:, 8] if sysm.n_states > 8 else 0.0
-    drift = (np.maximum.reduceat(np.abs(energy + work - np.repeat(energy[starts], lengths)), starts)
-             / np.maximum.reduceat(scale, starts))
-    th = y[:, TH]
-    q = {"max_theta": np.maximum.reduceat(th, starts), "min_theta": np.minimum.reduceat(th, starts),
-         "final_theta": th[ends],
-         "max_theta_deviation": np.maximum.reduceat(np.abs(th - np.repeat(refs[lanes], lengths)), starts)}
-    for i, name in enumerate(STATE_NAMES):
-        q[f"final_{name}"] = y[ends, i]
-    if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself is
-        # between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
-        need = batch.per_run(friction_twin(spec.model), np.ascontiguousarray(y[:, :8].T),
-                             np.repeat(model_pars[:, lanes], lengths, axis=1), lengths)
-        need = np.where(need[0] > 0, need[1], np.nan)
-        q["max_friction_required_on_grid"] = np.fmax.reduceat(need, starts)
+    # every lane is reduced at once (a failed lane's values are not read); a run is its first kept samples
+    lane = np.arange(len(indices))
+    last = kept - 1
+    run = np.arange(len(grid))[None, :] < kept[:, None]  # (lanes, grid)
+    g = len(grid)  # samples may carry each lane's padding to whole SIMD groups (Ensemble.sample_row)
+    with np.errstate(invalid="ignore"):
+        diag = batch.per_lane(ens.energy_terms, samples[:8], model_pars, kept)
+        omega_z, terms = diag[0], diag[1:]
+        energy, scale = terms.sum(axis=0)[:, :g], np.abs(terms).sum(axis=0)[:, :g]
+        work = samples[ens.lanes.row("W"), :, :g] if "W" in ens.lanes.states else 0.0
+        drift = (np.where(run, np.abs(energy + work - energy[:, :1]), -np.inf).max(axis=1)
+                 / np.where(run, scale, -np.inf).max(axis=1))
+        th = samples[TH, :, :g]
+        q = {"max_theta": np.where(run, th, -np.inf).max(axis=1), "min_theta": np.where(run, th, np.inf).min(axis=1),
+             "final_theta": th[lane, last],
+             "max_theta_deviation": np.where(run, np.abs(th - refs[:, None]), -np.inf).max(axis=1)}
+        for i, name in enumerate(STATE_NAMES):
+            q[f"final_{name}"] = samples[i, lane, last]
+        if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself
+            # is between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
+            need = batch.per_lane(ens.friction_required, samples[:8], model_pars, kept)[:, :, :g]
+            need = np.where(run & (need[0] > 0), need[1], np.nan)
+            q["max_friction_required_on_grid"] = np.fmax.reduce(need, axis=1)
     wanted = set(spec.record) & set(SENSE_KEYS)  # only where asked: the windows cost a filter each
-    for j, k in enumerate(lanes):
+    points = spec.columns(np.asarray(indices, dtype=np.int64))
+    for k in np.flatnonzero([r is None for r in rows]):
         index = int(indices[k])
-        point = spec.point(index)
+        point = {name: float(column[k]) for name, column in points.items()}
         stop = float(t_stop[k]) if stopped[k] else spec.t_end
         row = {"idx": index, **{f"in_{a}": v for a, v in point.items()},
-               "outcome": "ok" if not stopped[k] else sysm.events[reason[k] - 1], "t_stop": stop,
-               "energy_drift_vs_terms": float(drift[j])}
-        values = {name: column[j] for name, column in q.items()}
+               "outcome": "ok" if not stopped[k] else ens.event_name(reason[k]), "t_stop": stop,
+               "energy_drift_vs_terms": float(drift[k])}
+        values = {name: column[k] for name, column in q.items()}
         if friction is not None:
             slipped = row["outcome"] == "slips"
             values.update(slipped=float(slipped), t_slip=stop if slipped else math.nan,
-                          theta_at_slip=final_pars[sysm.theta_at_stop, k] if slipped else math.nan)
+                          theta_at_slip=ens.record(final_pars, "theta_at_stop")[k] if slipped else math.nan)
         if "tilt" in point:
             values["growth"] = values["max_theta_deviation"] / point["tilt"]
         if wanted:
-            seg = slice(starts[j], ends[j] + 1)
-            values.update(senses(grid[: lengths[j]], y[seg], omega_z[seg]))
+            values.update(senses(grid[: kept[k]], samples[:, k, : kept[k]].T, omega_z[k, : kept[k]]))
         for name in spec.record:
             row[name] = float(values[name])
         rows[k] = row
     return rows
-
-
-def orbit_windows(t, theta) -> list:
-    """Index slices of the windows a run's senses are read over.
-
-    A run that nutates is cut half-way between successive maxima of theta into windows of
-    :data:`NUTATIONS_PER_WINDOW` nutations (the remainder spread evenly, so each window holds
-    N to 2N - 1), less than a nutation and a half at either end left out.  Counting nutations
-    rather than seconds keeps the filters of :mod:`verify.circling` the same in every window
-    although the nutation period of a decaying ring shrinks fourfold (0.2-0.3 s at the start,
-    0.05 s at theta = 0.1) and the period within one window stays nearly constant (the
-    running mean uses one period per window).  A run whose theta does not move (no nutation)
-    is cut into :data:`WINDOWS` equal windows instead.  Fewer than two windows: [].
-    """
-    t, theta = np.asarray(t, float), np.asarray(theta, float)
-    if len(t) < 2:
-        return []
-    if np.ptp(theta) < NUTATION_FLOOR:
-        if len(t) < 2 * WINDOWS:
-            return []
-        edges = np.linspace(0, len(t) - 1, WINDOWS + 1).round().astype(int)
-        return [slice(a, b + 1) for a, b in zip(edges[:-1], edges[1:])]
-    marks = theta_maxima(t, theta)
-    cuts = 0.5 * (marks[:-1] + marks[1:])  # len(marks) - 1 cuts hold len(marks) - 2 whole nutations
-    k = (len(cuts) - 1) // NUTATIONS_PER_WINDOW
-    if k < 2:
-        return []
-    at = np.searchsorted(t, cuts[np.linspace(0, len(cuts) - 1, k + 1).round().astype(int)])
-    return [slice(a, b + 1) for a, b in zip(at[:-1], at[1:])]
-
-
-def senses(t, y, omega_z) -> dict:
-    """The sense of the orbit (the slow path of the centre of mass) and of the spin, window by window.
-
-    ``orbit`` is the sense in which the CM's *slow path* circles -- the path left when the
-    nutation loops are filtered out -- read by :func:`verify.circling.circling` in each window of
-    :func:`orbit_windows` by two measures that share nothing but the run (the CM once per
-    nutation, its winding; the CM averaged over a nutation, its swept area).  A window's orbit
-    sense is +1/-1 only where both measures decide (half a turn or more) with the same sign, and
-    0 (undecided) otherwise: neither measure is preferred.  The nutation loops themselves -- and
-    with them the turning of the line of nodes e1 -- do not enter.
-
-    ``spin`` is the sign of the mean of omega . Z = phidot + psidot cos(theta) over a window.
-    A decided window is prograde when its orbit goes with its own spin, retrograde when against.
-
-    * ``orbit_start``/``orbit_end``: orbit sense in the first/last window that decides (NaN: none
-      does); ``t_orbit_start``/``t_orbit_end`` where those windows begin/end; ``orbit_last`` the
-      sense in the run's last window (0: the end state is not read);
-    * ``orbit_reversal`` = 1 when a later decided window has the sense opposite to the first one
-      (``t_orbit_reversal``: the start of the first such window), 0 when none has, NaN when fewer
-      than two windows decide;
-    * ``spin_start``/``spin_end``: the spin in the run's first/last window;
-    * ``retrograde_turn``: the run ends against its spin after starting with it.  1 when the run's
-      last window decides and is retrograde and the first window that decides is prograde; 0 when
-      the last window decides and is prograde, or it and the run's first window are both
-      retrograde; NaN otherwise (the end state, or the start before it, is not read);
-    * ``retrograde_by_last_read``: the same with the last window that decides standing for the
-      end (what the slow path shows as far as it can be read; NaN when fewer than two decide);
-      ``retrograde_end``: that window is retrograde; ``t_retrograde``: start of the first
-      retrograde decided window after a prograde first one;
-    * ``windows``, ``windows_undecided``; ``strobe_last``/``mean_last``: the two measures (turns)
-      in the run's last window, to show how they disagree when they do; ``points_per_nutation``:
-      the output grid's resolution of the shortest nutation period in the run;
-    * ``node_turn_*``: the former reading, the sign of phi(end) - phi(start) in the first/last window
-      (it counts the turning of e1, i.e. the loops), and ``node_retrograde_turn`` the retrograde
-      turn by that reading -- kept for comparison, not used for the verdict;
-    * ``path_*``: the sign of the area the raw sampled path sweeps (loops included);
-      ``roll_*``: the sign of the CM's displacement along e1, the direction it rolls (when it
-      reverses so does the centripetal friction force).
-
-    Every value is NaN for a run with fewer than two windows (too few nutations to read).
-    """
-    wins = orbit_windows(t, y[:, TH])
-    if not wins:
-        return dict.fromkeys(SENSE_KEYS, math.nan)
-    t = np.asarray(t, float)
-    phi, x, yy, th = y[:, PH], y[:, X], y[:, Y], y[:, TH]
-    orbit, spin, node, path, roll, reads = [], [], [], [], [], []
-    for s in wins:
-        c = circling(t[s], x[s], yy[s], th[s], nutation_floor=NUTATION_FLOOR)
-        reads.append(c)
-        orbit.append(c.sign)
-        spin.append(int(np.sign(np.mean(omega_z[s]))))
-        p = phi[s]
-        node.append(int(np.sign(p[-1] - p[0])))
-        xs, ys = x[s] - x[s].mean(), yy[s] - yy[s].mean()
-        path.append(int(np.sign(np.sum(xs[:-1] * np.diff(ys) - ys[:-1] * np.diff(xs)))))
-        roll.append(int(np.sign(np.sum(np.diff(x[s]) * np.cos(p[:-1]) + np.diff(yy[s]) * np.sin(p[:-1])))))
-    start = [float(t[s][0]) for s in wins]
-    decided = [i for i, o in enumerate(orbit) if o != 0]
-    pro = {i: spin[i] != 0 and orbit[i] == spin[i] for i in decided}
-    retro = {i: spin[i] != 0 and orbit[i] == -spin[i] for i in decided}
-    nan = math.nan
-    out = {"windows": float(len(wins)), "windows_undecided": float(len(wins) - len(decided)),
-           "orbit_last": float(orbit[-1]), "spin_start": float(spin[0]), "spin_end": float(spin[-1]),
-           "strobe_last": reads[-1].strobe.turns, "mean_last": reads[-1].mean.turns,
-           "points_per_nutation": _points_per_nutation(t, reads),
-           "orbit_start": nan, "orbit_end": nan, "t_orbit_start": nan, "t_orbit_end": nan,
-           "orbit_reversal": nan, "t_orbit_reversal": nan, "retrograde_end": nan, "retrograde_turn": nan,
-           "retrograde_by_last_read": nan, "t_retrograde": nan}
-    if decided:
-        first, last = decided[0], decided[-1]
-        flip = next((i for i in decided if orbit[i] == -orbit[first]), None)
-        turned = next((i for i in decided if retro[i]), None) if pro[first] else None
-        out.update(orbit_start=float(orbit[first]), orbit_end=float(orbit[last]), t_orbit_start=start[first],
-                   t_orbit_end=float(t[wins[last]][-1]), retrograde_end=float(retro[last]),
-                   t_retrograde=start[turned] if turned is not None else nan)
-        if len(decided) >= 2:
-            out.update(orbit_reversal=float(flip is not None), t_orbit_reversal=start[flip] if flip is not None else nan,
-                       retrograde_by_last_read=float(pro[first] and retro[last]))
-        end = len(wins) - 1
-        if end in decided and len(decided) >= 2:
-            if pro[end]:
-                out["retrograde_turn"] = 0.0
-            elif retro[end] and pro[first]:
-                out["retrograde_turn"] = 1.0
-            elif retro[end] and first == 0 and retro[0]:
-                out["retrograde_turn"] = 0.0  # retrograde from its first window on: no turn
-    node_retro = node[0] == spin[0] and node[-1] == -spin[-1] and spin[-1] != 0
-    flip_roll = next((i for i, r in enumerate(roll) if r != roll[0]), None)
-    out.update(node_turn_start=float(node[0]), node_turn_end=float(node[-1]), node_retrograde_turn=float(node_retro),
-               path_start=float(path[0]), path_end=float(path[-1]), path_reversal=float(path[-1] != path[0]),
-               roll_start=float(roll[0]), roll_end=float(roll[-1]), roll_reversal=float(roll[-1] != roll[0]),
-               t_roll_reversal=start[flip_roll] if flip_roll is not None else nan)
-    return out
-
-
-def _points_per_nutation(t, reads) -> float:
-    """Output points in the shortest nutation period of the run's windows (NaN: no nutation)."""
-    periods = [c.nutation_period for c in reads if math.isfinite(c.nutation_period)]
-    return min(periods) / float(t[1] - t[0]) if periods else math.nan

@@ -43,7 +43,7 @@ def grid_of(spec: SweepSpec, rows: list, quantity: str, x: str, y: str, panel_va
 
 def _category_colours() -> tuple:
     """The cells' colours in category order: yes, no, then the others (verify.style's roles)."""
-    from .. import style
+    from .. import style  # lazy: matplotlib (0.3 s) only when a map is drawn; grid_of needs numpy alone
 
     return (style.YES, style.NO, style.UNDECIDED, style.TOO_SHORT, style.RUN, style.PREDICTED, style.EDGE)
 
@@ -84,11 +84,11 @@ def render(spec: SweepSpec, rows: list, title: str = None) -> bytes:
     quantity = spec.plot.get("quantity", spec.record[0] if spec.record else ALWAYS[0])
     if quantity in YES_NO or quantity == OUTCOME:
         return render_categories(spec, rows, quantity, title)
-    import matplotlib
+    import matplotlib  # lazy: only when a map is drawn (as style above)
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import LogNorm
+    import matplotlib.pyplot as plt  # lazy: as matplotlib
+    from matplotlib.colors import LogNorm  # lazy: as matplotlib
 
     plot = spec.plot
     names = [a.name for a in spec.axes]
@@ -122,12 +122,12 @@ def render(spec: SweepSpec, rows: list, title: str = None) -> bytes:
 
 def render_categories(spec: SweepSpec, rows: list, quantity: str, title: str = None) -> bytes:
     """A categorical map (module docstring): one cell per run, a colour per category, counts in the legend."""
-    import matplotlib
+    import matplotlib  # lazy: only when a map is drawn (as style above)
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import BoundaryNorm, ListedColormap
-    from matplotlib.patches import Patch
+    import matplotlib.pyplot as plt  # lazy: as matplotlib
+    from matplotlib.colors import BoundaryNorm, ListedColormap  # lazy: as matplotlib
+    from matplotlib.patches import Patch  # lazy: as matplotlib
 
     plot = spec.plot
     names = [a.name for a in spec.axes]

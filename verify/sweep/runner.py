@@ -46,7 +46,9 @@ import sys
 import time
 from dataclasses import dataclass
 
-from .engine import fastest_rate, run_chunk, validate_points
+from ..engine.ensemble import resolve
+from ..engine.lanes import simd_width
+from .engine import check_readings, fastest_rate, run_chunk, validate_points
 from .spec import SpecError, SweepSpec, parse
 from .store import Store, columns
 
@@ -101,13 +103,10 @@ class Estimate:
 
 def estimate(spec: SweepSpec, threads: int = None) -> Estimate:
     """Points, memory per chunk, store size and a rough time of ``spec``, from its text alone."""
-    from ..engine.lanes import simd_width
-    from models import get_model
-
     threads = threads or os.cpu_count() or 1
     bs = simd_width()
     lanes = -(-min(spec.chunk, spec.n_points) // bs) * bs
-    n_states = 8 + (get_model(spec.model).dissipation is not None)
+    n_states = 8 + (resolve(spec.model).dissipation is not None)
     # the dense output of every lane, plus ~1 copy for the reductions and the inputs
     memory = int(lanes * spec.samples * n_states * 8 * 1.5) + lanes * 1024
     store = spec.n_points * (8 * len(columns(spec)) + 40)
@@ -151,11 +150,12 @@ class SweepResult:
     estimate: "Estimate" = None  # what it was expected to cost
 
 
-def chunk_task(spec_text: str, chunk: int, threads: int = 1) -> tuple:
-    """A chunk as a self-contained task (for Dask): (chunk, rows, seconds, worker)."""
+def chunk_task(spec_text: str, chunk: int, threads: int = 1, senses=None) -> tuple:
+    """A chunk as a self-contained task (for Dask): (chunk, rows, seconds, worker).  ``senses``: as
+    :func:`verify.sweep.engine.run_chunk`'s (a module-level function: Dask sends it by name)."""
     spec = parse(spec_text, "<spec sent to the worker>", store="unused")
     t0 = time.monotonic()
-    rows = run_chunk(spec, chunk, threads=threads)
+    rows = run_chunk(spec, chunk, threads=threads, senses=senses)
     return chunk, rows, time.monotonic() - t0, f"{socket.gethostname()}:{os.getpid()}"
 
 
@@ -192,14 +192,17 @@ class Progress:
 
 
 def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: bool = True,
-              store_path=None, yes: bool = False) -> SweepResult:
+              store_path=None, yes: bool = False, senses=None) -> SweepResult:
     """Run every chunk of ``spec`` that its store does not hold yet, and write each as it finishes.
 
-    First (nothing computed, nothing written): the size is stated on stderr (with ``progress``)
-    and checked against :data:`LIMITS` -- :class:`SweepTooLarge` unless ``yes`` --, then every
-    point is checked as a start -- :class:`verify.sweep.spec.InvalidPoint` naming the first bad
-    one.  Both are :class:`verify.sweep.spec.SpecError`.
+    First (nothing computed, nothing written): a spec that records a sense of the orbit needs its
+    reading, ``senses`` (:func:`verify.studies.orbits.senses`; :func:`verify.sweep.engine.check_readings`),
+    then the size is stated on stderr (with ``progress``) and checked against :data:`LIMITS` --
+    :class:`SweepTooLarge` unless ``yes`` --, then every point is checked as a start --
+    :class:`verify.sweep.spec.InvalidPoint` naming the first bad one.  All are
+    :class:`verify.sweep.spec.SpecError`.
     """
+    check_readings(spec, senses)
     threads = threads or os.cpu_count() or 1
     t0 = time.monotonic()
     cost = estimate(spec, threads)
@@ -219,11 +222,11 @@ def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: 
                 where = f"local ({threads} threads)"
                 for c in todo:
                     t1 = time.monotonic()
-                    rows = run_chunk(spec, c, threads=threads)
+                    rows = run_chunk(spec, c, threads=threads, senses=senses)
                     store.write_chunk(c, rows, time.monotonic() - t1, f"{socket.gethostname()}:{os.getpid()}")
                     bar.advance(len(rows))
             else:
-                where = _run_on_dask(spec, todo, dask, store, bar)
+                where = _run_on_dask(spec, todo, dask, store, bar, senses)
         finally:
             bar.close()
         rows = store.count()
@@ -231,9 +234,9 @@ def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: 
                        time.monotonic() - t0, where, cost)
 
 
-def _run_on_dask(spec: SweepSpec, todo: list, address: str, store: Store, bar: Progress) -> str:
+def _run_on_dask(spec: SweepSpec, todo: list, address: str, store: Store, bar: Progress, senses) -> str:
     try:
-        from dask.distributed import Client, LocalCluster, as_completed
+        from dask.distributed import Client, LocalCluster, as_completed  # lazy: optional, --dask only, 0.4 s
     except ImportError:  # pragma: no cover - dask is a test dependency
         raise RuntimeError("--dask needs dask.distributed: pip install 'dask[distributed]'") from None
     cluster = None
@@ -250,7 +253,7 @@ def _run_on_dask(spec: SweepSpec, todo: list, address: str, store: Store, bar: P
     try:
         where = client.scheduler.address if cluster is None else f"local Dask cluster ({len(cluster.workers)} workers)"
         # one thread a task: Dask runs a task on every worker thread, so the cores are already busy
-        futures = [client.submit(chunk_task, spec.text, c, 1, pure=False) for c in todo]
+        futures = [client.submit(chunk_task, spec.text, c, 1, senses, pure=False) for c in todo]
         for fut in as_completed(futures):
             chunk, rows, seconds, worker = fut.result()
             store.write_chunk(chunk, rows, seconds, worker)

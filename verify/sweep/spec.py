@@ -66,31 +66,34 @@ uses.  The axes are intervals and the ranges are intervals, so an axis whose two
 range has every value in range.  Every point of the grid is then checked as a whole start (the
 parameters together, theta in the domain, N > 0) by :func:`verify.sweep.engine.validate_points`
 before a store is created; see there why an invalid point refuses the sweep instead of being
-stored.  Axis values are computed on demand (:class:`AxisValues`), never as a list, so a spec with a
-typo in a count costs nothing until :mod:`verify.sweep.runner` refuses it by its size.
+stored.  Axis values are computed on demand (:class:`verify.sweep.axes.AxisValues`), never as a list, so a
+spec with a typo in a count costs nothing until :mod:`verify.sweep.runner` refuses it by its size.
 """
 from __future__ import annotations
 
 import hashlib
-import itertools
 import math
 import sys
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
 import numpy as np
 
-from models import ALL_NAMES, get_model
+from models import ALL_NAMES, BODY_PREFIX
+from models.steady import MOTIONS
 from models.symbols import STATE_NAMES
+
+from ..engine.ensemble import resolve
+from ..engine.validation import InvalidStart, check_parameter_value
+from .axes import Axis, AxisValues
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
 
-#: The orbit/spin senses of a run (verify.sweep.engine.senses documents each).
+#: The orbit/spin senses of a run, read by a study (verify.studies.orbits.senses documents each).
 SENSE_KEYS = ("orbit_start", "orbit_end", "orbit_last", "t_orbit_start", "t_orbit_end", "orbit_reversal",
               "t_orbit_reversal", "spin_start", "spin_end", "retrograde_turn", "retrograde_by_last_read",
               "retrograde_end", "t_retrograde", "windows", "windows_undecided", "strobe_last", "mean_last",
@@ -130,76 +133,6 @@ class InvalidPoint(SpecError):
     def __init__(self, message: str, index: int, point: dict, reason: str):
         super().__init__(message)
         self.index, self.point, self.reason = index, point, reason
-
-
-class AxisValues(Sequence):
-    """The values of an axis, each computed when asked for (no list of them is ever built).
-
-    Value j is exactly what the former tuple held: linear ``lo + (hi - lo) * j / (count - 1)``,
-    geometric ``lo * (hi / lo) ** (j / (count - 1))``, the ends exactly as written.
-    """
-
-    __slots__ = ("lo", "hi", "count", "scale")
-
-    def __init__(self, lo: float, hi: float, count: int, scale: str):
-        self.lo, self.hi, self.count, self.scale = lo, hi, count, scale
-
-    def __len__(self) -> int:
-        return self.count
-
-    def value(self, j: int) -> float:
-        lo, hi, count = self.lo, self.hi, self.count
-        if count == 1:
-            return lo
-        if j == count - 1:
-            return hi
-        if self.scale == "linear":
-            return lo + (hi - lo) * j / (count - 1)
-        return lo if j == 0 else lo * (hi / lo) ** (j / (count - 1))
-
-    def __getitem__(self, j):
-        if isinstance(j, slice):
-            return tuple(self.value(i) for i in range(*j.indices(self.count)))
-        j = int(j)
-        if j < 0:
-            j += self.count
-        if not 0 <= j < self.count:
-            raise IndexError(f"axis value {j} of {self.count}")
-        return self.value(j)
-
-    def take(self, js) -> np.ndarray:
-        """The values at the indices ``js`` (an integer array), each computed once."""
-        js = np.asarray(js, dtype=np.int64)
-        uniq, inverse = np.unique(js, return_inverse=True)
-        return np.array([self.value(int(j)) for j in uniq], dtype=float)[inverse.reshape(js.shape)]
-
-    @property
-    def extremes(self) -> tuple:
-        """(smallest, largest) value: the ends (the axis is monotone)."""
-        return (min(self.lo, self.hi), max(self.lo, self.hi))
-
-    def __array__(self, dtype=None, copy=None):
-        return np.array([self.value(j) for j in range(self.count)], dtype=dtype)
-
-    def __eq__(self, other):
-        if isinstance(other, AxisValues):
-            return (self.lo, self.hi, self.count, self.scale) == (other.lo, other.hi, other.count, other.scale)
-        if isinstance(other, (tuple, list)):
-            return len(other) == self.count and all(a == b for a, b in zip(self, other))
-        return NotImplemented
-
-    def __hash__(self):
-        return hash((self.lo, self.hi, self.count, self.scale))
-
-    def __repr__(self) -> str:
-        return f"AxisValues(from={self.lo!r}, to={self.hi!r}, count={self.count}, scale={self.scale!r})"
-
-
-@dataclass(frozen=True)
-class Axis:
-    name: str
-    values: AxisValues
-    scale: str
 
 
 @dataclass(frozen=True)
@@ -284,9 +217,13 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     _only(sweep, {"name", "model", "t_end", "samples", "chunk", "store"}, f"{where} [sweep]")
     name = _text(sweep, "name", where)
     model_name = _text(sweep, "model", where)
-    if model_name not in ALL_NAMES:
-        raise SpecError(f"{where}: [sweep] model = {model_name!r} is unknown; allowed: {', '.join(ALL_NAMES)}")
-    model = get_model(model_name)
+    if model_name not in ALL_NAMES and not model_name.startswith(BODY_PREFIX):
+        raise SpecError(f"{where}: [sweep] model = {model_name!r} is unknown; allowed: {', '.join(ALL_NAMES)}, or a "
+                        f"shipped body {BODY_PREFIX}NAME (python -m verify models)")
+    try:
+        model = resolve(model_name)  # a body file's model is derived once and kept on disk
+    except ValueError as err:  # an unknown body
+        raise SpecError(f"{where}: [sweep] model = {model_name!r}: {err}") from None
     t_end = _positive(sweep.get("t_end"), "[sweep] t_end", where)
     samples = _count(sweep.get("samples", 401), "[sweep] samples", where, minimum=2)
     chunk = _count(sweep.get("chunk", 512), "[sweep] chunk", where, minimum=1)
@@ -324,8 +261,6 @@ def parse(text: str, where: str = "<spec>", store: Optional[str] = None) -> Swee
     start_table = dict(_table(data, "start", where))
     steady = start_table.pop("steady", None)
     if steady is not None:
-        from models.steady import MOTIONS
-
         allowed = MOTIONS.get(model_name, ())
         if steady not in allowed:
             raise SpecError(f"{where}: [start] steady = {steady!r} for {model_name!r}; allowed: "
@@ -422,7 +357,7 @@ def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) 
     if name == FRICTION and not (lo > 0 and hi > 0):
         raise SpecError(f"{where}: [[axis]] friction: a friction coefficient must be positive; got from = {lo}, "
                         f"to = {hi}")
-    model = get_model(model_name)
+    model = resolve(model_name)
     for end, raw in (("from", ax.get("from")), ("to", ax.get("to"))):  # monotone axis: its ends bound it
         _in_range(model, name, lo if end == "from" else hi, raw, f"[[axis]] {name} {end} = {raw!r}", where)
     # geometric axes keep their ends exactly as written (AxisValues.value)
@@ -431,8 +366,6 @@ def _axis(ax: dict, i: int, settable: set, steady, model_name: str, where: str) 
 
 def _in_range(model, name: str, value: float, raw, what: str, where: str) -> None:
     """A fixed value or an axis end of a model parameter against its range (verify.engine.validation)."""
-    from ..engine.validation import InvalidStart, check_parameter_value
-
     if name not in model.parameter_names:
         return
     try:
@@ -490,8 +423,3 @@ def _count(value, what: str, where: str, minimum: int) -> int:
     if value < minimum:
         raise SpecError(f"{where}: {what} = {value} must be at least {minimum}")
     return value
-
-
-def product(spec: SweepSpec):
-    """Every point of the sweep in index order, one at a time (itertools.product of the lazy axes)."""
-    return itertools.product(*(a.values for a in spec.axes))

@@ -6,10 +6,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from verify.behaviour import both_sides, side_fractions
-from verify.circling import circling
+from verify.behaviour import Reading, both_sides, side_fractions
+from verify.circling import circling, theta_maxima
+from verify.figure_starts import start
 
 from ..base import FigureData, RunData, decide, undecided
+from ..disk_spindown import fig6_rates
 from .runs import G, K, _arrays, _sense, _verdict, circle_centre, run, run_start
 
 
@@ -19,8 +21,6 @@ def _eq21_psidot(th, phd, k=K):
 
 
 def _check_fig2():
-    from verify.figure_starts import start
-
     _, data = run_start("fig2", "Eq. 21 circle")  # theta0 = 1.8, phidot0 = 5, psidot0 from Eq. 21
     phd = float(start("fig2").state["phidot"])
     t, _, x, y, phi, _ = _arrays(data)
@@ -240,9 +240,6 @@ def _excursion(t, x, y, theta, reach_other: float):
     (the CM's farthest distance from the start, at least 3x the other panel's, and its return
     afterwards within a third of it), and timed by theta (the CM's distance at the deep bows,
     theta's maxima, against that at the most upright points, theta's minima: at least 3x)."""
-    from verify.behaviour import Reading
-    from verify.circling import theta_maxima
-
     r = np.hypot(x - x[0], y - y[0])
     far = int(np.argmax(r))
     back = float(r[far:].min()) if far < len(r) - 1 else math.inf
@@ -269,11 +266,9 @@ def _check_fig5_rhs():
 
 
 def _check_fig6():
-    from ..disk import _fig6_rates
-
     out = []
     for family, label, name in (("no-vertical-spin", "no z rotation", "fig6-lhs"), ("cm-at-rest", "v_CM = 0", "fig6-rhs")):
-        phr, psr, v = _fig6_rates("1/100", family)
+        phr, psr, v = fig6_rates("1/100", family)
         _, data = run_start(name, label)  # the state solved at 30 digits, rounded once to double
         out.append((data, float(np.hypot(np.array(data.x) - data.x[0], np.array(data.y) - data.y[0]).max()),
                     float(2 * v / abs(phr))))  # the steady CM circle's diameter, v/|phidot| its radius

@@ -2,14 +2,21 @@
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 
 import numpy as np
+import sympy as sp
 
-from verify.behaviour import leaves, oscillates, spirals_out
+from models import paper
+from models.symbols import phiddot, psiddot, theta
+from verify.behaviour import Reading, leaves, oscillates, spirals_out
+from verify.circling import theta_maxima
 from verify.engine.single import solve
+from verify.studies.thresholds import threshold
 
-from ..base import FigureData, RunData, decide
+from ...mathtext import equation
+from ..base import PAPER_FILE, FigureData, RunData, decide
 from .runs import (G, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _verdict, circle_centre, finite_offset, run,
                    run_start)
 
@@ -20,8 +27,6 @@ def _hb_steady_theta(phd):
 
 def _static(d: RunData, name: str, theta_tol: float, cm_tol=None):
     """Static: theta constant and (cm_tol given) the CM at rest, else omega3 constant (a steady circle)."""
-    from verify.behaviour import Reading
-
     spread = float(np.ptp(d.theta))
     if cm_tol is not None:
         reach = float(np.hypot(np.array(d.x) - d.x[0], np.array(d.y) - d.y[0]).max())
@@ -71,9 +76,6 @@ def _check_fig16_lhs():
 
 
 def _check_fig16_rhs():
-    from verify.behaviour import Reading
-    from verify.circling import theta_maxima
-
     th, _, rhs = _fig16_runs()
     t, thr, *_ = _arrays(rhs)
     limit = math.acos(0.4)
@@ -97,8 +99,6 @@ def _fig17_runs():
 
 
 def _check_fig17_lhs():
-    from verify.behaviour import Reading
-
     phd, lhs, rhs = _fig17_runs()
     x, y = np.array(lhs.x), np.array(lhs.y)
     cx, cy = circle_centre(x, y)
@@ -114,8 +114,6 @@ def _check_fig17_lhs():
 
 @lru_cache(maxsize=None)
 def _fig18_runs():
-    from verify.studies.thresholds import threshold
-
     out = {"threshold": float(threshold("hurricane", "sleeping").value) / 2 / SQRT_G}  # phidot0 = psidot0, omega3 = 2 phidot0
     for f, name in ((0.98, "fig18-lhs"), (0.97, "fig18-rhs")):
         out[f] = run_start(name, f"{f} sqrt(g), theta0 = 0.01")[1]
@@ -204,8 +202,6 @@ def _check_fig19_rhs():
 
 
 def _check_fig19_sum():
-    from verify.behaviour import Reading
-
     r = _fig19_runs()
     sol = solve("hurricane", "10", {"theta": "0.01", "psidot": repr(1.95 * SQRT_G)}, n_eval=1001)
     ph, ps, phd, psd = (np.array([float(v) for v in sol[n]]) for n in ("phi", "psi", "phidot", "psidot"))
@@ -229,10 +225,6 @@ def _check_fig19_sum():
 def _printed_components(number: int) -> int:
     """Rows of the displayed equation ``(number)`` as it stands in the paper: a column vector
     (pmatrix) has as many rows as its first matrix, anything else is a scalar equation."""
-    import re
-
-    from ..base import PAPER_FILE
-
     text = PAPER_FILE.read_text(encoding="utf-8")
     display = next(m.group(1) for m in re.finditer(r"\$\$(.*?)\$\$", text, re.S)
                    if re.search(rf"\\(?:quad|tag)\s*\(?{number}\)?\s*$", m.group(1).strip()))
@@ -245,18 +237,11 @@ def _check_fig19_citation():
     and 82 have (the check fails if Eq. 82 were a 3-vector), and what the third component of the
     equations of motion (Eqs. 80-81, whose printed rows the claims show identical to the derived
     ones) says at theta = 0."""
-    import sympy as sp
-
-    from models import paper
-    from models.symbols import phiddot, psiddot, theta
-
     I1, I3 = sp.symbols("I1 I3", positive=True)
     n81, n82 = _printed_components(81), _printed_components(82)
     third = sp.simplify(paper.eq80_81_rows(I1, I3)[2].subs(theta, 0))
     spin = sp.simplify(third - I3 * (phiddot + psiddot)) == 0
     ok = n82 >= 3
-    from ...mathtext import equation
-
     return decide(ok, f"as printed, Eq. 81 has {n81} components and Eq. 82 has {n82}; the third component of Eqs. 80-81 "
                       f"at $\\theta = 0$ is {equation(third, 0)}"
                       + (r": $\dot{\phi} + \dot{\psi}$ is constant there" if spin else ""),
@@ -267,8 +252,6 @@ def _check_fig19_citation():
 
 @lru_cache(maxsize=None)
 def _fig20_runs():
-    from verify.studies.thresholds import threshold
-
     rho, th = 3.535, 0.01
     phd = math.sqrt(G / ((1.4 * rho - 1) - (2 - rho) * math.cos(th)))
     state = {"phidot": phd, "psidot": rho * phd}

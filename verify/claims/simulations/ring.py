@@ -6,8 +6,11 @@ from functools import lru_cache
 
 import numpy as np
 
+from models.steady import steady_state
 from verify.behaviour import leaves, one_side, oscillates
 from verify.engine.single import solve
+from verify.figure_starts import start as figure_start
+from verify.studies.thresholds import threshold
 
 from ..base import FigureData, RunData, decide, qualify, undecided
 from .runs import (G, PRINTED_SET, RING_PRINTED, SQRT_G, _arrays, _bisect, _completed, _leaves_quietly, _sense, _verdict,
@@ -101,8 +104,6 @@ def _fig9_check(side: str, want: int):
 
 @lru_cache(maxsize=None)
 def _fig10_runs():
-    from verify.studies.thresholds import threshold
-
     h = float(RING_PRINTED["h"])
     eq = math.atan2(1, h)  # cot^-1 h
     out = {"eq": eq, "threshold": float(threshold("ring", "straight-line", RING_PRINTED).value)}
@@ -192,9 +193,6 @@ def _check_fig10_rhs():
 
 @lru_cache(maxsize=None)
 def _fig11_runs():
-    from models.steady import steady_state
-    from verify.studies.thresholds import threshold
-
     root = float(steady_state("ring", "diameter-spin", "25.7", RING_PRINTED)["theta"])
     near = 1.225 - _fig11_lhs_root()  # the LHS's start above its equilibrium: the caption's 'near'
     out = {"root": root, "near": near, "threshold": float(threshold("ring", "diameter-spin", RING_PRINTED).value)}
@@ -221,8 +219,6 @@ def _check_fig11_lhs():
 
 
 def _fig11_lhs_root():
-    from models.steady import steady_state
-
     return float(steady_state("ring", "diameter-spin", repr(SQRT_G), RING_PRINTED)["theta"])
 
 
@@ -273,8 +269,6 @@ def _check_fig12():
     caption's statements are about what is plotted (the CM or the point A; dimensionless time),
     so they are decided on the rolling equations run without the contact event, and the
     loss of contact is reported."""
-    from verify.figure_starts import start as figure_start
-
     h = float(RING_PRINTED["h"])
     start = {k: float(v) for k, v in figure_start("fig12").state.items()}  # pi/2 - .55, 4.5 sqrt(g/R)
     sol, cm = run_start("fig12", "CM (contact not enforced)")  # run without the contact event, 3001 points

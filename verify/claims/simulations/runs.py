@@ -12,6 +12,7 @@ from models.common import PAPER_G
 from models.ring import parameter_set
 from verify.circling import circling
 from verify.engine.single import solve
+from verify.figure_starts import start
 
 from verify.studies.finite_offset import finite_offset_verdict
 
@@ -53,8 +54,6 @@ def run_start(name: str, label: str, **kw):
     """(Trajectory, RunData) of the figure start ``name`` (:mod:`verify.figure_starts`): the one
     source of each panel's start, so the report's run is the run a reader gets by that name.
     The RunData carries the start's panel side."""
-    from verify.figure_starts import start
-
     s = start(name)
     params = dict(s.params) or None
     kw.setdefault("n_eval", s.n_eval)

@@ -6,7 +6,6 @@ import math
 from dataclasses import dataclass
 from functools import lru_cache
 
-import heyoka as hy
 import mpmath
 import numpy as np
 import sympy as sp
@@ -17,7 +16,7 @@ from models.rolling import derive
 from models.common import PAPER_G
 from models.symbols import g, phidot, psidot, theta, thetadot
 
-from ...engine.compile import to_heyoka
+from ...engine.auxiliary import sympy_system
 from ...engine.single import resolve_parameters, through_grid
 from ...precision import parse_precision
 from .family import family_law, theta0
@@ -125,7 +124,7 @@ def _parameter_values(name: str, c, params) -> dict:
 
 
 @lru_cache(maxsize=None)
-def _transport_system(name: str):
+def transport_system(name: str):
     """The drift along steady motions with omega3 transported: d(omega3, t, phi)/d(theta).
 
     At (theta, omega3) the steady phidot is the root of row 1 (thetaddot = 0 at thetadot = 0,
@@ -149,17 +148,16 @@ def _transport_system(name: str):
     energy = model.energy.subs(sub).subs(phidot, rate)
     dE = sp.diff(energy, theta) + sp.diff(energy, w3) * dw3
     dt = -dE / work_rate(name).subs(sub).subs(phidot, rate)
-    W3, T, PHI = hy.make_vars("omega3", "t", "phi")
-    mapping = {w3: W3, theta: hy.time, disk.k: hy.par[0], g: hy.par[1], C_SYMBOL: hy.par[2]}
-    return [(W3, to_heyoka(dw3, mapping)), (T, to_heyoka(dt, mapping)), (PHI, to_heyoka(rate * dt, mapping))]
+    return sympy_system([("omega3", w3, dw3), ("t", None, dt), ("phi", None, rate * dt)], time=theta,
+                        parameters=(disk.k, g, C_SYMBOL))
 
 
 def _transport(name: str, pv: dict, th0: float, levels: np.ndarray):
     """Integrate the transported drift from th0 down through the levels and on to 1e-6 of the
     last one; the rest to theta = 0 (a (1e-10)^n fraction of t0) from the family law."""
-    pars = [float(pv["k"]), float(pv["g"]), float(pv["c"])]  # par[0], par[1], par[2] of _transport_system
+    pars = [float(pv["k"]), float(pv["g"]), float(pv["c"])]  # par[0], par[1], par[2] of transport_system
     tiny = float(levels[-1]) * 1e-6
-    run = through_grid(("dissipation transport", name), _transport_system(name), [0.0, 0.0, 0.0], pars,
+    run = through_grid(("dissipation transport", name), transport_system(name), [0.0, 0.0, 0.0], pars,
                        np.concatenate([[th0], levels, [tiny]]))
     rows = run.rows
     if not run.reached:

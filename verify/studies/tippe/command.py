@@ -1,6 +1,8 @@
 """``python -m verify tippe-top``: the tippe top's thresholds and its runs under both friction laws."""
 from __future__ import annotations
 
+import json
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("tippe-top", help="the tippe top under the smooth law and exact Coulomb friction: thresholds, "
@@ -12,9 +14,7 @@ def add_parser(sub) -> None:
 
 
 def cmd_tippe_top(args, session) -> int:
-    import json
-
-    from . import runs
+    from . import runs  # lazy: sympy, heyoka (0.6 s): not --help (the parser imports this module)
 
     result = runs.study(quick=args.quick)
     session.emit(json.dumps(result, indent=1) if args.format == "json" else runs.text(result))

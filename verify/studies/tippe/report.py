@@ -32,8 +32,8 @@ def render_markdown(data: dict) -> str:
              f"{grp['tippe-top-stable']['ratio']:g}) and the hanging one ({grp['tippe-top-hanging']['ratio']:g}) lie "
              f"outside the window ({grp['tippe-top']['window'][0]:g}, {grp['tippe-top']['window'][1]:g}).", "",
              "| law | body | n (s⁻¹) | ε (R/s) | verdict | predicted | θ > 2.5 at (s) | z_C within 0.01 R of R + c at (s) "
-             "| end θ | E + W (ε) | Jellett (ε) |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| γ(L_C, e3) > 2.5 at (s) | end θ | end γ (steady) | E + W (ε) | Jellett (ε) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in data["smooth"] + data["coulomb"]:
         p = data["predictions"][f"{r['body']}@{r['spin']:g}"]
         pred = p["verdict"] + (f" at {p['theta']:.4f}" if p["verdict"] == "tilted" else "")
@@ -44,9 +44,15 @@ def render_markdown(data: dict) -> str:
             pred, eps = "—", "—"
         else:
             verdict, end, eps = r["verdict"], f"{r['end_theta']:.4f}", f"{r['eps']:g}"
+        steady = "" if p.get("gamma") is None else f" ({p['gamma']:.4f})"
         lines.append(f"| {r['law']} | {r['body']} | {r['spin']:g} | {eps} | {verdict} | {pred} | {_t(r['t_theta'])} | "
-                     f"{_t(r['t_height'])} | {end} | {r['energy_plus_work_in_eps']:.3g} | {r['jellett_in_eps']:.3g} |")
-    lines += ["", "Every smooth-law verdict is the energy–Jellett prediction; exact Coulomb friction sticks within "
+                     f"{_t(r['t_height'])} | {_t(r['t_spin'])} | {end} | {r['end_gamma']:.4f}{steady} | "
+                     f"{r['energy_plus_work_in_eps']:.3g} | {r['jellett_in_eps']:.3g} |")
+    lines += ["", "Two measures of the inversion: the tilt θ of the axis, and γ, the angle between the angular "
+              "momentum about C and the axis (from the rates: cos γ = I3 ω3/|L_C|); the verdict needs both, and says "
+              "`disagree` when they do not agree. At a tilted end γ is the steady motion's (in brackets, from "
+              "V_λ's minimum without integrating).",
+              "", "Every smooth-law verdict is the energy–Jellett prediction; exact Coulomb friction sticks within "
               "25 ms and then rolls, keeping the energy, Jellett's and Routh's integrals, so it never turns over. "
               "The inversion time grows like 1/ε for small ε (the Coulomb limit) and like ε for large ε."]
     return "\n".join(lines)

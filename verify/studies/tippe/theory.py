@@ -197,4 +197,14 @@ def steady_rates(t: Top, theta, lam_value) -> tuple:
     return -k * t.R, k * t.c
 
 
-__all__ = ["Thresholds", "Top", "check_formulas", "landscape", "predict", "steady_rates", "thresholds", "top"]
+def steady_spin_axis_angle(t: Top, theta, lam_value):
+    """gamma, the angle between L_C and e3 (rad), at the rolling steady motion at ``theta`` with Jellett's
+    ``lam_value`` (omega = k r_P: L_C = k (0, I1 r2, I3 r3), cos gamma = sign(k) I3 r3 / |(I1 r2, I3 r3)|): what the
+    second inversion measure of :mod:`.runs` reads at a settled end, by a route that does not integrate."""
+    radius, centre, i1, i3 = (mpmath.mpf(str(sp.N(x, 40))) for x in (t.R, t.c, t.I1, t.I3))
+    r2, r3 = -radius * mpmath.sin(theta), centre - radius * mpmath.cos(theta)
+    return mpmath.acos(mpmath.sign(lam_value) * i3 * r3 / mpmath.sqrt((i1 * r2) ** 2 + (i3 * r3) ** 2))
+
+
+__all__ = ["Thresholds", "Top", "check_formulas", "landscape", "predict", "steady_rates", "steady_spin_axis_angle", "thresholds",
+           "top"]

@@ -1,4 +1,4 @@
-"""Linear stability of steady motions, exactly: the threshold spin rate.
+"""Linear stability of steady motions, exactly: the threshold spin rate (paper Eqs. 32, 41, 62, 70-72, 95).
 
 For a steady motion (thetadot = 0, constant rates) of a body of revolution on the plane,
 phiddot and psiddot carry a factor thetadot and thetaddot is even in thetadot, so the
@@ -9,7 +9,8 @@ Jacobian of the reduced system X = (theta, thetadot, phidot, psidot) has the sha
 and its characteristic polynomial is lambda^2 (lambda^2 + w2), w2 = -(a + c e + d f).
 The double zero belongs to the two-parameter family of steady motions (a perturbation
 can move the body to a neighbouring member); the motion is linearly stable (oscillatory)
-when w2 > 0, and the threshold is w2 = 0.  The shape is checked, not assumed.
+when w2 > 0, and the threshold is w2 = 0.  The shape is checked, not assumed.  The sleeping
+motion (theta = 0) is linearised in the complex tilt instead (:func:`sleeping_coefficients`).
 """
 from __future__ import annotations
 
@@ -24,13 +25,18 @@ from models import get_model
 from models.steady import MOTIONS, exact_parameters, steady_state
 from models.symbols import phidot, psidot, theta, thetadot
 
-from ..mathtext import latex, symbol_latex
+from ...engine.single import resolve_parameters
+from ...mathtext import latex, symbol_latex
+from ...precision import parse_precision
 
 OMEGA = sp.Symbol("Omega", positive=True)
 
 
 @dataclass(frozen=True)
 class Threshold:
+    """The critical rate of one steady motion of one model: ``value`` (None: no threshold), its closed form
+    where there is one, how it was found, and w2 as a function of the rate."""
+
     model: str
     motion: str
     params: dict  # name -> decimal string
@@ -84,36 +90,20 @@ def check_reading(params: dict, study: str) -> None:
                              "a value it keeps to 15 digits (magnitude above ~1e-30; a repeating decimal to 16 digits)")
 
 
-def to_record(t: Threshold, nonlinear=None) -> dict:
-    """The JSON object of ``python -m verify threshold --format json``; ``nonlinear`` is (tilt, (lo, hi))."""
-    return {
-        "model": t.model,
-        "motion": t.motion,
-        "params": t.params,
-        "threshold": {"name": t.name, "value": None if t.value is None else mpmath.nstr(t.value, 20, strip_zeros=False)},
-        "closed_form": t.closed_form,
-        "method": t.method,
-        "bracket": None if not nonlinear or nonlinear[1] is None else {
-            "tilt": nonlinear[0], "low": mpmath.nstr(nonlinear[1][0], 12), "high": mpmath.nstr(nonlinear[1][1], 12),
-            "method": f"bisection on the rate; theta perturbed by the tilt, grows = leaves the domain or moves more than "
-                      f"{GROWTH} x the tilt within 10 s (double, derived equations)"},
-    }
-
-
 def threshold(name: str, motion: str, params: Optional[dict] = None, dps: int = 30) -> Threshold:
     """The critical rate of ``motion`` for model ``name`` (parameters as decimal strings).
 
     Computed once per (name, motion, params, dps) in a process: the sympy linearisation costs
     0.1-2 s, and the brackets, the scan and the ring's comparison each ask for it again.
     """
-    key = _params_key(params)
+    key = params_key(params)
     if key is None:
         return _threshold(name, motion, params, dps)
     t = _threshold_memo(name, motion, key, dps)
     return replace(t, params=dict(t.params))  # the caller's own dict, as from a fresh computation
 
 
-def _params_key(params: Optional[dict]):
+def params_key(params: Optional[dict]):
     """``params`` as a hashable key that tells 1, 1.0 and "1" apart, or None if a value is not hashable."""
     try:
         key = tuple(sorted((k, type(v).__name__, v) for k, v in (params or {}).items()))
@@ -138,9 +128,6 @@ def _threshold(name: str, motion: str, params: Optional[dict], dps: int) -> Thre
     unknown = set(params) - set(model.parameter_names)
     if unknown:
         raise ValueError(f"unknown parameter {sorted(unknown)[0]!r}; allowed: {', '.join(model.parameter_names)}")
-    from verify.engine.single import resolve_parameters
-    from verify.precision import parse_precision
-
     values = resolve_parameters(model, params, parse_precision("double"))  # validates ranges
     check_reading(params, "threshold study")
     if name == "hurricane" and motion == "precession" and not values["I1"] > values["I3"]:
@@ -286,262 +273,33 @@ def _sleeping(name, model, subs, shown, dps) -> Threshold:
                      f"(\\dot{{\\phi}} + \\dot{{\\psi}})^2 = {latex(sp.factor(crit**2))}")
 
 
-# --- confirmation by the full nonlinear equations ----------------------------------------
-
-GROWTH = 1000  # a run "grows" when theta leaves its steady value by more than GROWTH x the tilt
-
+# --- the steady state and the linearisation's coefficients, numerically (shared by the confirmations) -----
 
 @lru_cache(maxsize=None)
 def _exact_memo(name: str, key: tuple) -> dict:
+    """The parameters of :func:`params_key`'s ``key`` as the exact numbers the study reads them as."""
     model = get_model(name)
     subs = exact_parameters(model, {k: v for k, _, v in key})
     return {p.name: subs[p.symbol] for p in model.parameters}
 
 
-def _steady(name, motion, rate, params) -> dict:
+def steady_at(name, motion, rate, params) -> dict:
     """:func:`models.steady.steady_state` with the parameters read (``sp.nsimplify``, ~40 ms for the
     ring's three) once per set: handed on as the exact numbers it reads them as, every parameter
     given, so its result is the same dict."""
-    key = _params_key(params)
+    key = params_key(params)
     return steady_state(name, motion, rate, params if key is None else _exact_memo(name, key))
 
 
-def nonlinear_path(name, motion, rate, tilt, params, t_end="10") -> tuple:
-    """(outcome, theta - theta_steady on the grid) of the full equations under the protocol of :func:`grows`.
-
-    theta is perturbed alone by ``tilt`` (rates kept: the body moves onto a neighbouring member
-    of the family); the deviation is measured from the unperturbed steady angle on the grid of
-    :func:`linear_deviation` (401 points), in double.
-    """
-    from verify.engine.single import solve
-
-    state = _steady(name, motion, rate, params)
-    with mpmath.workdps(40):
-        th0 = mpmath.mpf(state["theta"])
-        state["theta"] = mpmath.nstr(th0 + mpmath.mpf(tilt), 36)
-    sol = solve(name, t_end, state, params, n_eval=401)
-    return sol.outcome, [float(v) - float(th0) for v in sol["theta"]]
-
-
-def nonlinear_deviation(name, motion, rate, tilt, params, t_end="10") -> tuple:
-    """(outcome, max |theta - theta_steady|) of :func:`nonlinear_path`."""
-    outcome, path = nonlinear_path(name, motion, rate, tilt, params, t_end)
-    return outcome, max(abs(v) for v in path)
-
-
-def grows(name, motion, rate, tilt, params, t_end="10") -> bool:
-    """Perturb theta alone by ``tilt`` (rates kept: the body moves onto a neighbouring member of the
-    family) and report whether theta leaves its steady value by more than GROWTH x tilt, or the
-    run leaves the model's domain, within ``t_end``."""
-    outcome, dev = nonlinear_deviation(name, motion, rate, tilt, params, t_end)
-    return outcome != "ok" or dev > GROWTH * float(tilt)
-
-
-def _grid(t_end, n: int = 401):
-    return [float(t_end) * i / (n - 1) for i in range(n)]
-
-
 @lru_cache(maxsize=None)
-def _linear_coefficients(name: str, motion: str, params_key: tuple):
-    """Numeric functions of the steady state giving the linearised theta dynamics (see linear_deviation)."""
+def linear_coefficients(name: str, motion: str, key: tuple):
+    """Numeric functions of the steady state giving the linearised theta dynamics (``key``: the parameters'
+    sorted items; see :func:`verify.studies.thresholds.growth.linear_deviation`)."""
     model = get_model(name)
-    subs = exact_parameters(model, dict(params_key))
+    subs = exact_parameters(model, dict(key))
     if motion == "sleeping":
         A, B = sleeping_coefficients(model)
         return sp.lambdify(OMEGA3, (A.subs(subs), B.subs(subs)), "mpmath")
     entries = jacobian_entries(model, {})
     entries = [e.subs(subs) for e in entries]
     return sp.lambdify((theta, phidot, psidot), entries, "mpmath")
-
-
-def linear_deviation(name, motion, rate, tilt, params=None, t_end="10", n: int = 401, phidot0=0) -> float:
-    """max |theta - theta_steady| on the grid of :func:`grows`, from the linearised equations.
-
-    The protocol of :func:`grows` (theta perturbed by ``tilt``, rates kept) applied to the
-    linearisation.  With the reduced Jacobian's entries a, c, d, e, f, phidot and psidot follow
-    theta (d phidot = e (d theta - tilt), d psidot = f (d theta - tilt)), so
-
-        d theta'' = -w2 d theta - s tilt,   s = c e + d f:
-        d theta(t) = d* + (tilt - d*) cos(sqrt(w2) t),   d* = -s tilt / w2
-
-    (cosh for w2 < 0): the perturbed body oscillates about a neighbouring member of the family
-    of steady motions, displaced by d*, which grows like 1/w2 near the threshold.  For the
-    sleeping motion u'' = A u + i B u' with u(0) = tilt, u'(0) = i phidot0 tilt (default phidot0 = 0,
-    the protocol of :func:`grows`; psidot0 = rate - phidot0).
-    """
-    params = dict(params or {})
-    f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
-    times = _grid(t_end, n)
-    with mpmath.workdps(30):
-        tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
-        if motion == "sleeping":
-            value, _ = _sleeping_solution(f, rate, tilt, phidot0, times[-1])
-            return float(max(value(t) for t in times))
-    return float(max(abs(v) for v in linear_path(name, motion, rate, tilt, params, t_end, n)))
-
-
-def _sleeping_solution(f, rate, tilt, phidot0, t_max):
-    """(t -> |u(t)|, a bound on |u| for 0 <= t <= t_max) of the sleeping motion's u'' = A u + i B u'
-    (:func:`linear_deviation`), as 30-digit mpmath numbers; call it, and the function it returns,
-    under ``workdps(30)``.  u = c1 exp(l1 t) + c2 exp(l2 t), so for t between 0 and t_max (either
-    sign) |u| <= sum |c_k| exp(max(Re l_k t_max, 0)): a decaying root grows backwards in time."""
-    A, B = f(rate)
-    root = mpmath.sqrt(mpmath.mpc(4 * A - B**2))
-    l1, l2 = (1j * B + root) / 2, (1j * B - root) / 2
-    v0 = 1j * mpmath.mpf(phidot0) * tilt
-    c1, c2 = (v0 - l2 * tilt) / (l1 - l2), (l1 * tilt - v0) / (l1 - l2)
-    bound = sum(abs(c) * mpmath.exp(max(l.real * t_max, 0)) for c, l in ((c1, l1), (c2, l2)))
-    return (lambda t: abs(c1 * mpmath.exp(l1 * t) + c2 * mpmath.exp(l2 * t))), bound
-
-
-def linear_path(name, motion, rate, tilt, params=None, t_end="10", n: int = 401) -> list:
-    """theta - theta_steady on the grid of :func:`grows` from the linearised equations (not sleeping).
-
-    d theta(t) = d* + (tilt - d*) cos(sqrt(w2) t) of :func:`linear_deviation` (cosh for w2 < 0).
-    """
-    with mpmath.workdps(30):
-        value, _ = _linear_solution(name, motion, rate, tilt, params)
-        return [float(value(t)) for t in _grid(t_end, n)]
-
-
-def _linear_solution(name, motion, rate, tilt, params):
-    """(t -> d theta(t), a bound on |d theta| over every t >= 0 or None) of :func:`linear_path`,
-    as 30-digit mpmath numbers; call it, and the function it returns, under ``workdps(30)``.
-
-    The bound |d*| + |tilt - d*| holds for the oscillating solution (w2 > 0); the growing one has none.
-    """
-    params = dict(params or {})
-    f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
-    tilt, rate = mpmath.mpf(tilt), mpmath.mpf(rate)
-    s = _steady(name, motion, rate, params)
-    a, c, d, e, ff = f(*(mpmath.mpf(s[k]) for k in ("theta", "phidot", "psidot")))
-    w2 = -(a + c * e + d * ff)
-    shift = -(c * e + d * ff) * tilt / w2
-    amplitude = tilt - shift
-    if w2 > 0:
-        root = mpmath.sqrt(w2)
-        return (lambda t: shift + amplitude * mpmath.cos(root * t)), abs(shift) + abs(amplitude)
-    root = mpmath.sqrt(-w2)
-    return (lambda t: shift + amplitude * mpmath.cosh(root * t)), None
-
-
-#: Relative margin on a 30-digit bound before it decides :func:`linear_grows` without the grid:
-#: far above the bound's own rounding (~1e-29) and the double rounding of the comparison (~1e-16).
-_BOUND_MARGIN = 1e-9
-
-
-def linear_grows(name, motion, rate, tilt, params, t_end="10", growth=GROWTH) -> bool:
-    """Whether :func:`linear_deviation` exceeds ``growth`` x the tilt, with the same answer for every input.
-
-    For the oscillating solution (w2 > 0) every value on the grid is at most |d*| + |tilt - d*|
-    (to 30 digits; for the sleeping motion sum |c_k| exp(max(Re l_k t_end, 0))); when that
-    bound, with :data:`_BOUND_MARGIN`, is below the limit no value can exceed it, and the 401
-    cosines (exponentials) are not evaluated.  Otherwise the grid is searched, its end first (where
-    a growing solution is largest), and the search stops at the first value above the limit: the
-    maximum exceeds a number exactly when one value does (rounding to double is monotonic).
-    """
-    limit = growth * float(tilt)
-    times = _grid(t_end)
-    with mpmath.workdps(30):
-        if motion == "sleeping":
-            f = _linear_coefficients(name, motion, tuple(sorted(dict(params or {}).items())))
-            value, bound = _sleeping_solution(f, mpmath.mpf(rate), mpmath.mpf(tilt), 0, times[-1])
-        else:
-            value, bound = _linear_solution(name, motion, rate, tilt, params)
-        if bound is not None and float(bound) * (1 + _BOUND_MARGIN) < limit:
-            return False
-        return any(abs(float(value(t))) > limit for t in times[-1:] + times[:-1])
-
-
-CRITERIA = ("nonlinear", "linear")
-
-
-def bracket(name: str, motion: str, tilt: str, params=None, iterations: int = 25, t_end: str = "10",
-            criterion: str = "nonlinear", growth: float = GROWTH):
-    """Bisect the rate between growth and no growth, starting from [lin/2, 2 lin].
-
-    ``criterion`` is ``"nonlinear"`` (full equations, :func:`grows`) or ``"linear"`` (the same
-    protocol on the linearisation, :func:`linear_deviation`): the nonlinear bracket tends to the
-    linear-protocol one as the tilt shrinks, and that one to the threshold as GROWTH and t_end grow.
-    """
-    if criterion not in CRITERIA:
-        raise ValueError(f"criterion {criterion!r}; allowed: {', '.join(CRITERIA)}")
-    if criterion == "linear":
-        test = lambda *args: linear_grows(*args, growth=growth)  # noqa: E731
-    elif growth != GROWTH:
-        raise ValueError("the nonlinear criterion uses GROWTH; a different growth factor is for criterion='linear'")
-    else:
-        test = grows
-    params = dict(params or {})
-    lin = threshold(name, motion, params).value
-    if lin is None:
-        return None
-    lo, hi = lin / 2, lin * 2
-    if not test(name, motion, lo, tilt, params, t_end) or test(name, motion, hi, tilt, params, t_end):
-        raise RuntimeError(f"{name} {motion}: no sign change of the growth test on [{lo}, {hi}] at tilt {tilt}")
-    for _ in range(iterations):
-        mid = (lo + hi) / 2
-        if test(name, motion, mid, tilt, params, t_end):
-            lo = mid
-        else:
-            hi = mid
-    return lo, hi
-
-
-# --- confirmation by the variational equations ---------------------------------------------
-
-@dataclass(frozen=True)
-class Variational:
-    """The stability coefficient recovered from the state-transition matrix of the full equations."""
-
-    model: str
-    motion: str
-    rate: mpmath.mpf
-    precision: str
-    period: mpmath.mpf  # T = quarter nutation period pi / (2 sqrt|w2|)
-    w2_linear: mpmath.mpf  # from the sympy linearisation
-    w2_variational: mpmath.mpf  # from trace(Phi_reduced(T)) = 2 + 2 cos(sqrt(w2) T)
-    multipliers: tuple  # eigenvalues of Phi_reduced(T) (complex, double)
-
-    @property
-    def relative_difference(self):
-        with mpmath.workdps(50):
-            return abs(self.w2_variational / self.w2_linear - 1)
-
-
-def variational_w2(name: str, motion: str, rate, params=None, precision: str = "double") -> Variational:
-    """w2 from heyoka's variational equations along the steady motion (order 1, compact mode).
-
-    The reduced block (theta, thetadot, phidot, psidot) of Phi(T) = exp(J T) has eigenvalues
-    1, 1 (the family of steady motions) and exp(+-i sqrt(w2) T), so its trace is
-    2 + 2 cos(sqrt(w2) T) (cosh for w2 < 0); at a quarter nutation period the cosine is
-    best conditioned.  The route shares nothing with the sympy linearisation but the model's
-    accelerations: the derivatives are heyoka's, along the integrated (not assumed) motion.
-    Not available for the sleeping motion (Euler angles are singular at theta = 0).
-    """
-    import numpy as np
-
-    from verify.engine.conditioning import transition_matrix
-    from verify.precision import parse_precision
-
-    if motion == "sleeping":
-        raise ValueError("the variational check needs Euler angles regular along the motion; 'sleeping' sits at theta = 0")
-    params = dict(params or {})
-    prec = parse_precision(precision)
-    model = get_model(name)
-    steady = _steady(name, motion, rate, params)
-    f = _linear_coefficients(name, motion, tuple(sorted(params.items())))
-    with mpmath.workdps(45):  # w2 to beyond quad: the steady state carries 36 digits
-        a, c, d, e, ff = f(*(mpmath.mpf(steady[k]) for k in ("theta", "phidot", "psidot")))
-        w2 = -(a + c * e + d * ff)
-        T = mpmath.pi / (2 * mpmath.sqrt(abs(w2)))
-    phi = transition_matrix(model, steady, params, prec.number(mpmath.nstr(T, 40)), prec)
-    idx = (0, 3, 4, 5)  # theta, thetadot, phidot, psidot in STATE order
-    block = [[prec.to_mpf(phi[i, j]) for j in idx] for i in idx]
-    with mpmath.workdps(max(45, prec.digits + 5)):
-        half = (sum(block[i][i] for i in range(4)) - 2) / 2
-        root = mpmath.acos(half) if w2 > 0 else mpmath.acosh(half)
-        w2v = (root / mpmath.mpf(T)) ** 2 * (1 if w2 > 0 else -1)
-    mult = np.linalg.eigvals(np.array([[float(x) for x in row] for row in block]))
-    mult = tuple(sorted((complex(m) for m in mult), key=lambda z: (round(z.real, 9), z.imag)))
-    return Variational(name, motion, mpmath.mpf(rate), prec.name, T, w2, w2v, mult)

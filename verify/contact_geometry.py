@@ -1,4 +1,4 @@
-"""The numbers the scorer needs from the geometry, in numpy only (no sympy, no heyoka).
+"""The numbers the scorer (and the animation) need from the contact geometry, in numpy only (no sympy, no heyoka).
 
 The forms of a run and the conversion between them are defined in :mod:`verify.frames`, which
 builds them symbolically from :mod:`models`; this module holds the numeric parts the scorer
