@@ -176,8 +176,16 @@ def forget() -> None:
     _compact.cache_clear()
 
 
+#: Larger expressions (by :func:`sympy.count_ops`) are left as they are: sympy's factorisation of their
+#: coefficients runs for minutes (the egg's accelerations, ~3900 operations, did not finish in 10).  The
+#: paper's models stay below (disk 91, ring 355, hurricane 630, ring+air-drag 1290); the ellipsoids (~2200) and the egg are left.
+MAX_OPS = 1500
+
+
 def compacted(expr: sp.Expr, gens: tuple) -> sp.Expr:
     """The compact form of ``expr`` collected in ``gens`` computed afresh (no cache): :func:`compact`'s work."""
+    if sp.count_ops(expr) > MAX_OPS:
+        return expr
     plain, atoms = _atomized(expr)
     if not gens:
         candidate = _coefficient(plain, atoms)
