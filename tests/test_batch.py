@@ -123,9 +123,13 @@ def test_a_lane_of_nan_or_huge_values_changes_no_other_lanes_bits():
     for lane in range(1, n_lanes, 2):
         m = lengths[lane]
         assert got[:, lane, :m].tobytes() == fn.simd(np.ascontiguousarray(points[:, lane, :m])).tobytes()
+    # negative control: the same samples flattened across lanes into one call, so that groups hold two lanes
     flat = fn.simd(np.ascontiguousarray(points.reshape(2, -1))).reshape(1, n_lanes, n)
-    assert any(flat[:, lane, :lengths[lane] // width * width].tobytes()
-               != got[:, lane, :lengths[lane] // width * width].tobytes() for lane in range(3, n_lanes, 4))
+    moved = any(flat[:, lane, :lengths[lane] // width * width].tobytes()
+                != got[:, lane, :lengths[lane] // width * width].tobytes() for lane in range(1, n_lanes, 2))
+    if not moved:  # measured here (AVX-512) at widths 2, 4 and 8: 2, 6 and 11 values moved by a neighbour
+        pytest.skip("this CPU's vector sine and cosine do not depend on the other lanes of a group: the layout "
+                    "above passed, but nothing here can show what it guards against")
 
 
 def test_step_cap_is_one_radian_of_the_fastest_rate():

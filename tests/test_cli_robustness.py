@@ -469,3 +469,25 @@ def test_progress_before_the_first_step_says_the_equations_compile():
     with bar:
         _until_reported(stream, "setting up", 60)
     assert "trajectory disk: setting up (compiling the equations), t_end = 1e6 s" in stream.getvalue()
+
+
+def test_a_curve_body_has_no_threshold_and_says_so_at_once(capsys):
+    """The egg's steady motions are not built (sympy ran past ten minutes on them): threshold refuses it in one
+    line before any analysis starts, whatever motion is named; a body of another kind still answers."""
+    for argv in (("threshold", "--body", "egg", "nosuchmotion"), ("threshold", "body:egg", "straight-line")):
+        code, out, err = run(capsys, *argv)
+        assert code == 2 and "curve body" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+    code, out, err = run(capsys, "threshold", "body:disk", "straight-line")
+    assert code == 0 and "psidot0 = 18.07392228230127" in out
+
+
+def test_a_sweep_map_is_written_as_png_only(tmp_path, capsys):
+    spec = tmp_path / "s.toml"
+    spec.write_text(f'[sweep]\nname = "s"\nmodel = "disk"\nt_end = 0.2\nsamples = 3\nchunk = 4\nstore = "{tmp_path / "s.sqlite"}"\n'
+                    '[start]\ntheta = 1.2\n[[axis]]\nname = "psidot"\nfrom = 1\nto = 2\ncount = 2\n'
+                    '[record]\nquantities = ["max_theta"]\n')
+    assert run(capsys, "sweep", str(spec))[0] == 0
+    code, out, err = run(capsys, "sweep", str(spec), "--plot", "--out", str(tmp_path / "m.bmp"))
+    assert code == 2 and ".png" in err and not (tmp_path / "m.bmp").exists()
+    code, out, err = run(capsys, "sweep", str(spec), "--plot", "--out", str(tmp_path / "m.png"))
+    assert code == 0 and (tmp_path / "m.png").read_bytes()[:4] == b"\x89PNG"

@@ -53,8 +53,10 @@ def test_an_ellipse_curve_rolls_as_the_prolate_ellipsoid_to_rounding():
 
 def test_the_eggs_contact_point_is_its_lowest_point_by_brute_force():
     """20001 points of the egg's meridian; the lowest at each tilt lies within the sampling's resolution of the
-    contact formula: heights agree to the sampling's second order (spacing pi/20000, curvature radius <= 9/8:
-    (1.6e-4)^2 x 9/8 / 2 = 1.4e-8, so 1e-7), positions to its first (1.6e-4 x |(r', z')| <= 1.6e-4 x 1.2, so 1e-3)."""
+    contact formula.  Spacing h = pi/20000 = 1.6e-4 in s, speed |(r', z')| <= 1.51, curvature radius rho between
+    0.375 and 1.51 (measured on the grid): the nearest sample is at most h |v| / 2 = 1.2e-4 along the curve from
+    the contact, so heights agree to its square over 2 rho_min, (1.2e-4)^2 / 0.75 = 1.9e-8 (held to 1e-7) and
+    positions to 2 x 1.2e-4 = 2.4e-4 (held to 1e-3)."""
     body = load("egg")
     c = contact(body.kind, body.values)
     s = sp.Symbol("s", real=True)

@@ -391,6 +391,9 @@ def cmd_sweep(args, session: Session) -> int:
             if out.is_dir():
                 raise UsageError(f"--out {args.out} is a folder; allowed: a file name for the PNG, such as "
                                  f"{out / Path(spec.store).with_suffix('.png').name}")
+            if out.suffix.lower() != ".png":
+                raise UsageError(f"--out {args.out}: the sweep's map is drawn as PNG; allowed: a file name ending "
+                                 f"in .png, such as {out.with_suffix('.png')}")
             _output_folder(str(out.parent))
             write_atomic(out, render(spec, rows))
             session.emit(f"wrote {out} ({len(rows)} of {spec.n_points} trajectories)")

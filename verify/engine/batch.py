@@ -5,8 +5,10 @@ maps (:mod:`verify.studies.maps`) are its users.
 
 * :func:`batch_system` compiles a system with per-lane bookkeeping parameters and the terminal
   events asked for (an event nobody asked for is not compiled: each costs on every step);
-* :func:`propagate_grid` runs every lane on a common output grid, ``chunk`` batches per ensemble
-  call, and yields each chunk's results as :class:`Batch` objects with heyoka's log messages;
+* :func:`propagate_grid` runs every lane on a common output grid, ``chunk`` batches at a time (the
+  next chunk integrating while the caller reads the last), and yields each chunk's results as
+  :class:`Batch` objects with heyoka's log messages; each worker thread enters heyoka along the
+  call path it timed fastest (:mod:`.call_paths`);
 * :func:`lane_failures` and :func:`alone` detect and isolate the lanes that failed;
 * :func:`per_lane` evaluates a compiled function over the samples of many runs at once with the
   bits of one call per run;
@@ -27,10 +29,10 @@ read (``alive``, or one an event reads).
 
 Determinism
 -----------
-Each ensemble iteration copies the same template and fills its lanes from fixed columns of
-precomputed arrays; lanes do not interact (each has its own step size and events).  A lane's
-result depends on its own inputs and the batch width only, whatever its partners, the threads or
-the chunking.
+Each worker copies the same template once and fills its lanes, batch after batch, from fixed
+columns of precomputed arrays; lanes do not interact (each has its own step size and events).  A
+lane's result depends on its own inputs and the batch width only, whatever its partners, the
+threads, the order the workers take the batches in, the call path or the chunking.
 """
 from __future__ import annotations
 

@@ -248,7 +248,7 @@ def _problems(spec: SweepSpec, ens: Ensemble, idx, states, pars, refs, problems)
             for j in np.flatnonzero(~(need < mu[cols])):
                 if int(j) not in bad:
                     problems.append((int(cols[j]), "slips", f"the start needs the friction coefficient mu_req = "
-                                     f"|F_h|/N = {need[j]:.9g} >= friction = {mu[cols[j]]!r}: it slips at t = 0 and "
+                                     f"|F_h|/N = {need[j]:.9g} >= friction = {float(mu[cols[j]])!r}: it slips at t = 0 and "
                                      "cannot roll"))
         if spec.theta_stop is not None:
             below = np.flatnonzero(~(sub[TH] > spec.theta_stop))
