@@ -147,7 +147,7 @@ def test_negative_control_a_coefficient_that_takes_over_the_step_size_fails_the_
     mapping = comp.symbol_map(model, right.variables)
     mapping[comp.FRICTION] = hy.par[len(model.parameters)]
     mapping.update(zip(ACCELERATIONS, [rhs for _, rhs in right.system[3:6]]))
-    naive_event = ("slips", comp.to_heyoka(naive, mapping), hy.event_direction.negative)
+    naive_event = ("slips", comp.to_heyoka(naive, mapping, compact=True), hy.event_direction.negative)
     mislabelled = replace(model, name="disk-with-a-naive-slip-event")  # its own integrator template
     p = problem(mislabelled, START, friction="1e9")
     p.__dict__["compiled"] = replace(right, model=mislabelled, events=right.events[:-1] + (naive_event,))
@@ -187,7 +187,7 @@ def test_negative_control_a_wrong_event_function_fails_the_check():
     mapping = comp.symbol_map(model, right.variables)
     mapping[comp.FRICTION] = hy.par[len(model.parameters)]
     mapping.update(zip(ACCELERATIONS, [rhs for _, rhs in right.system[3:6]]))
-    wrong_event = ("slips", comp.to_heyoka(wrong_f, mapping), hy.event_direction.positive)
+    wrong_event = ("slips", comp.to_heyoka(wrong_f, mapping, compact=True), hy.event_direction.positive)
     mislabelled = replace(model, name="disk-with-a-wrong-slip-event")  # its own integrator template
     wrong = replace(right, model=mislabelled, events=right.events[:-1] + (wrong_event,))
     p = problem(mislabelled, START, friction="0.3")

@@ -45,8 +45,8 @@ constant heyoka would round (a rational whose denominator is not a power of two)
 depends only on the expression (sympy's canonical ordering): the same compiled code every run.
 
 The rewriting costs sympy seconds for a body file's model (cancel, factor and together on every
-coefficient: 2.6 s for body:oblate-ellipsoid's system, 5 s more with the slip event, where heyoka
-compiles it in 0.4 s), so every result is kept on disk (:func:`cache_directory`), keyed by the exact
+coefficient: 4.3 s for body:oblate-ellipsoid's system and events, 28 s for every model's and body's,
+where heyoka compiles one in about 0.4 s), so every result is kept on disk (:func:`cache_directory`), keyed by the exact
 text of the expression and its variables (``sympy.srepr``), this module's source and sympy's version,
 and kept as text that is rebuilt node for node (:func:`tree_text`, :func:`from_tree_text`: a pickle
 would not give back the same tree): a fresh process (a ``--body`` run, a test worker) reads it back in milliseconds
@@ -62,6 +62,7 @@ import os
 from functools import lru_cache
 from pathlib import Path
 
+import flint
 import sympy as sp
 
 
@@ -104,9 +105,11 @@ def cache_directory() -> Path:
 
 @lru_cache(maxsize=None)
 def _source_hash() -> str:
-    """sha256 of this module's source and sympy's version: a change to either makes every entry a miss."""
+    """sha256 of this module's source and sympy's and python-flint's versions: a change to any makes every
+    entry a miss."""
     h = hashlib.sha256(Path(__file__).read_bytes())
     h.update(sp.__version__.encode())
+    h.update(flint.__version__.encode())
     return h.hexdigest()
 
 
@@ -176,9 +179,10 @@ def forget() -> None:
     _compact.cache_clear()
 
 
-#: Larger expressions (by :func:`sympy.count_ops`) are left as they are: sympy's factorisation of their
-#: coefficients runs for minutes (the egg's accelerations, ~3900 operations, did not finish in 10).  The
-#: paper's models stay below (disk 91, ring 355, hurricane 630, ring+air-drag 1290); the ellipsoids (~2200) and the egg are left.
+#: Larger expressions (by :func:`sympy.count_ops`) are left as they are: the rewriting's cost grows fast with
+#: the size (sympy's own factorisation of the egg's ~3900-operation invariants did not finish in 10 minutes;
+#: with FLINT's, the egg's slip event, 1543 operations, takes 21 s).  Every expression compiled compact stays
+#: below but that one: disk 89, ring 146, hurricane 212, ring+air-drag 414, the ellipsoids 959.
 MAX_OPS = 1500
 
 
@@ -288,10 +292,37 @@ def _reduced(expr: sp.Expr, a: sp.Symbol, b: sp.Symbol) -> sp.Expr:
 
 
 def _factored(expr: sp.Expr) -> sp.Expr:
+    """``expr`` cancelled, its numerator and denominator factored over the rationals (:func:`_factor`)."""
     try:
-        return sp.factor(sp.cancel(expr))
+        numerator, denominator = sp.fraction(sp.cancel(expr))
+        return _factor(numerator) / _factor(denominator)
     except sp.PolynomialError:  # an algebraic extension sympy cannot factor over: leave it
         return expr
+
+
+def _factor(p: sp.Expr) -> sp.Expr:
+    """The polynomial ``p`` (in plain symbols) factored over the rationals: by FLINT's multivariate
+    factorisation (python-flint's ``fmpq_mpoly.factor``), which gives the same factors as
+    :func:`sympy.factor` in a small part of its time (the ring's coefficients: 0.3 s against 2.2 s;
+    sympy's Wang-Hensel lifting on the egg's ran past minutes).  A factor's sign and the order of the
+    factors are FLINT's (positive leading term in lexicographic order of the symbols' names); the
+    product is rebuilt by sympy, which orders it canonically.  A polynomial with other than rational
+    coefficients (an algebraic number, a symbol's root left as a number) goes to :func:`sympy.factor`.
+    """
+    gens = tuple(sorted(p.free_symbols, key=lambda s: s.name))
+    if not gens:
+        return sp.factor(p)
+    poly = sp.Poly(p, *gens)
+    if poly.domain not in (sp.ZZ, sp.QQ):
+        return sp.factor(p)
+    ctx = flint.fmpq_mpoly_ctx.get(tuple(s.name for s in gens), "lex")
+    content, factors = ctx.from_dict({m: flint.fmpq(int(c.p), int(c.q)) for m, c in poly.terms()}).factor()
+    product = [sp.Rational(int(content.p), int(content.q))]
+    for factor, power in factors:
+        terms = [sp.Rational(int(c.p), int(c.q)) * sp.Mul(*[v ** n for v, n in zip(gens, m)])
+                 for m, c in sorted(factor.to_dict().items())]
+        product.append(sp.Add(*terms) ** power)
+    return sp.Mul(*product)
 
 
 def _exact_constants(expr: sp.Expr) -> bool:
