@@ -12,8 +12,12 @@ control: the same check flags a rewriting with a wrong trigonometric rule (sin^2
 """
 from __future__ import annotations
 
+import os
 import pickle
 import random
+import subprocess
+import sys
+from pathlib import Path
 
 import heyoka as hy
 import pytest
@@ -27,6 +31,7 @@ from verify.engine.compact import compact, compacted, polynomial_symbols
 from verify.engine.compile import FRICTION, contact_event_function, slip_event_function
 
 VARIABLES = STATE + ACCELERATIONS
+SIGNED = set(VARIABLES)  # drawn of either sign (the parameters stay in their positive ranges)
 POINTS = 3  # random exact points per expression: a non-identity that is a rational function vanishes on a
 #           # hypersurface, so a single random point already exposes it with probability 1
 
@@ -47,17 +52,20 @@ def _expressions(model) -> list:
 
 
 def _point(expr, rng: random.Random) -> dict:
-    """Exact values for every symbol and for sin/cos of every angle of ``expr``."""
+    """Exact values for every symbol and for sin/cos of every angle of ``expr``: the angles anywhere on the
+    circle (t of either sign), the state's and accelerations' values of either sign (a rewriting that
+    holds only for positive values, such as sqrt(s^2) -> s, is caught), the parameters positive."""
     values = {}
     for f in sorted(expr.atoms(sp.sin, sp.cos), key=sp.default_sort_key):
         a = f.args[0]
         if sp.sin(a) in values:
             continue
-        t = sp.Rational(rng.randint(1, 97), rng.randint(1, 97))
+        t = rng.choice((-1, 1)) * sp.Rational(rng.randint(1, 97), rng.randint(1, 97))
         values[sp.sin(a)] = 2 * t / (1 + t ** 2)
         values[sp.cos(a)] = (1 - t ** 2) / (1 + t ** 2)
     for s in sorted(expr.free_symbols, key=lambda s: s.name):
-        values[s] = sp.Rational(rng.randint(1, 199), rng.randint(1, 53))
+        sign = rng.choice((-1, 1)) if s in SIGNED else 1
+        values[s] = sign * sp.Rational(rng.randint(1, 199), rng.randint(1, 53))
     return values
 
 
@@ -119,6 +127,47 @@ def test_a_wrong_rewriting_is_flagged():
     wrong = sp.expand(psiddot).subs(sp.sin(theta) ** 2, 1 + sp.cos(theta) ** 2)
     assert differs(psiddot, wrong, seed=0)
     assert not differs(psiddot, sp.expand(psiddot).subs(sp.sin(theta) ** 2, 1 - sp.cos(theta) ** 2), seed=0)
+
+
+def test_a_rewriting_true_only_for_positive_values_is_flagged():
+    """Negative control of the signs drawn: sqrt(thetadot^2) -> thetadot holds for thetadot > 0 only."""
+    thetadot = STATE[3]
+    assert differs(sp.sqrt(thetadot ** 2) + STATE[4], thetadot + STATE[4], seed=0)
+
+
+#: What a fresh process prints: the sha256 of the compact forms (tree_text) of the disk's and the ring's
+#: compacted expressions, computed afresh (no cache), and whether any holds a float.
+FRESH = """
+import hashlib, sympy as sp
+from models import get_model
+from models.symbols import ACCELERATIONS, STATE
+from verify.engine.compact import compacted, polynomial_symbols, tree_text
+from tests.test_compact import _expressions
+texts, floats = [], False
+for name in ("disk", "ring"):
+    for e in _expressions(get_model(name)):
+        e = sp.sympify(e)
+        form = compacted(e, polynomial_symbols(e, STATE + ACCELERATIONS))
+        floats |= bool(form.atoms(sp.Float))
+        texts.append(tree_text(form))
+print(hashlib.sha256("\\n".join(texts).encode()).hexdigest(), floats)
+"""
+
+
+def test_the_forms_do_not_depend_on_the_process():
+    """The same forms (the compiled code's cache key) in fresh processes with other hash seeds and with
+    sympy's integers its own pure-Python ones rather than FLINT's (SYMPY_GROUND_TYPES=python): a form built
+    from FLINT's integers once carried float exponents (x**2.0) there, and was then refused, silently."""
+    root = Path(__file__).resolve().parent.parent
+    seen = set()
+    for env in ({"PYTHONHASHSEED": "1"}, {"PYTHONHASHSEED": "2", "SYMPY_GROUND_TYPES": "python"}):
+        out = subprocess.run([sys.executable, "-c", FRESH], cwd=root, env={**os.environ, **env}, capture_output=True,
+                             text=True, timeout=300)
+        assert out.returncode == 0, out.stderr[-2000:]
+        digest, floats = out.stdout.split()
+        assert floats == "False", env
+        seen.add(digest)
+    assert len(seen) == 1, seen
 
 
 def test_compact_is_deterministic_and_leaves_other_forms():

@@ -64,6 +64,7 @@ from pathlib import Path
 
 import flint
 import sympy as sp
+from sympy.external.gmpy import GROUND_TYPES
 
 
 def polynomial_symbols(expr: sp.Expr, candidates) -> tuple:
@@ -105,11 +106,12 @@ def cache_directory() -> Path:
 
 @lru_cache(maxsize=None)
 def _source_hash() -> str:
-    """sha256 of this module's source and sympy's and python-flint's versions: a change to any makes every
-    entry a miss."""
+    """sha256 of this module's source, sympy's and python-flint's versions and sympy's ground types: a change
+    to any makes every entry a miss."""
     h = hashlib.sha256(Path(__file__).read_bytes())
     h.update(sp.__version__.encode())
     h.update(flint.__version__.encode())
+    h.update(GROUND_TYPES.encode())  # sympy's integers (python, gmpy or flint): its canonical forms may differ
     return h.hexdigest()
 
 
@@ -315,13 +317,14 @@ def _factor(p: sp.Expr) -> sp.Expr:
     poly = sp.Poly(p, *gens)
     if poly.domain not in (sp.ZZ, sp.QQ):
         return sp.factor(p)
-    ctx = flint.fmpq_mpoly_ctx.get(tuple(s.name for s in gens), "lex")
+    ctx = flint.fmpq_mpoly_ctx.get(tuple(f"x{i}" for i in range(len(gens))), "lex")  # by position: any name
     content, factors = ctx.from_dict({m: flint.fmpq(int(c.p), int(c.q)) for m, c in poly.terms()}).factor()
     product = [sp.Rational(int(content.p), int(content.q))]
-    for factor, power in factors:
-        terms = [sp.Rational(int(c.p), int(c.q)) * sp.Mul(*[v ** n for v, n in zip(gens, m)])
+    for factor, power in factors:  # FLINT's integers (fmpz) made Python's: sympy takes an fmpz exponent for a
+        # float (x**2.0) unless its own ground types are FLINT's
+        terms = [sp.Rational(int(c.p), int(c.q)) * sp.Mul(*[v ** int(n) for v, n in zip(gens, m)])
                  for m, c in sorted(factor.to_dict().items())]
-        product.append(sp.Add(*terms) ** power)
+        product.append(sp.Add(*terms) ** int(power))
     return sp.Mul(*product)
 
 
