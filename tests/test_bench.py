@@ -79,8 +79,14 @@ def test_solve_against_bare_names_every_ratio_with_its_baseline_and_target():
     assert "target" not in pairs[("solve", "bare propagate_until")]
     text = "\n".join(_md_solve({"solve_vs_bare": cases}))
     rows = [ln for ln in text.splitlines() if ln.startswith("| solve")]
-    assert len(rows) == 5 and all("bare propagate_until" in ln for ln in rows)
+    assert len(rows) == 6 and sum("bare propagate_until" in ln for ln in rows) == 5
     assert sum("<= 1.25: " in ln for ln in rows) == 1 and sum("<= 1.5: " in ln for ln in rows) == 1
+    # the outside baseline (Eq. 18 by hand, no events) at t_end <= 1 s, and the decomposition sizes
+    hand = pairs[("solve", "bare hand-written Eq. 18, no events")]
+    assert hand["target"] == "<= 2" and sum("<= 2: " in ln for ln in rows) == 1
+    terms = case["decomposition_terms"]
+    assert terms["hand_written_eq18"] < terms["system"] < terms["system_and_events"]
+    assert "Decomposition terms: system " in text
     # the angle-reducing baseline: steps comparable with solve's, its per-step ratio and the overhead named
     assert case["steps_bare_events_reduced"] > 0 and case["per_step_ratio_vs_bare_events_reduced"] > 0
     assert "per-step ratio against it" in text and "per-call overhead" in text

@@ -125,7 +125,7 @@ def sympy_system(states, time=None, parameters=()) -> list:
     if time is not None:
         mapping[time] = hy.time
     mapping.update({p: hy.par[i] for i, p in enumerate(parameters)})
-    return [(var, to_heyoka(rhs, mapping)) for var, (_, _, rhs) in zip(variables, states)]
+    return [(var, to_heyoka(rhs, mapping, compact=True)) for var, (_, _, rhs) in zip(variables, states)]
 
 
 def through_grid(key, system, start, pars, grid, precision="double") -> GridRun:

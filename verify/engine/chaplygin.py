@@ -196,7 +196,7 @@ def _transport_system(matrix, parameter_symbols: tuple):
     variables = hy.make_vars("p11", "p12", "p21", "p22")
     mapping = {theta: hy.time}
     mapping.update({s: hy.par[i] for i, s in enumerate(parameter_symbols)})
-    A = [[to_heyoka(matrix[i, j], mapping) for j in range(2)] for i in range(2)]
+    A = [[to_heyoka(matrix[i, j], mapping, compact=True) for j in range(2)] for i in range(2)]
     P = [[variables[0], variables[1]], [variables[2], variables[3]]]
     rhs = [A[i][0] * P[0][j] + A[i][1] * P[1][j] for i in range(2) for j in range(2)]
     return tuple(zip(variables, rhs))

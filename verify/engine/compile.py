@@ -33,16 +33,32 @@ from models.base import Model
 from models.symbols import ACCELERATIONS, STATE, STATE_NAMES, g, theta
 
 from ..precision import Precision
+from .compact import compact as compact_form
 
 
-def to_heyoka(expr: sp.Expr, mapping: dict):
-    """Convert a sympy expression, refusing constants heyoka would round to double."""
+def to_heyoka(expr: sp.Expr, mapping: dict, *, compact: bool = False):
+    """Convert a sympy expression, refusing constants heyoka would round to double.
+
+    ``compact=True`` for what a Taylor integrator computes on every step (a right-hand side, an event's
+    function): the expression is first rewritten by :func:`verify.engine.compact.compact` (an identity:
+    collected over the monomials of the symbols ``mapping`` sends to heyoka variables or expressions of
+    them, the state and the accelerations, never the parameters), which shortens heyoka's Taylor
+    decomposition.  A function read on output samples (a cfunc: invariants, forces) is converted as the
+    derivation left it: rewriting it would save little, and costs sympy seconds on a cold cache.
+    """
+    expr = sp.sympify(expr)
     for atom in sp.preorder_traversal(expr):
         if isinstance(atom, sp.Rational) and not atom.is_Integer and atom.q & (atom.q - 1):
             raise ValueError(f"the constant {atom} would be rounded to double; keep it as a parameter")
         if isinstance(atom, sp.Float):
             raise ValueError(f"the float constant {atom} would be rounded to double; use exact numbers")
-    return hy.from_sympy(sp.sympify(expr), mapping)
+    return hy.from_sympy(compact_form(expr, _state_like(mapping)) if compact else expr, mapping)
+
+
+def _state_like(mapping: dict) -> tuple:
+    """The symbols of ``mapping`` whose heyoka value holds a variable (the state, expressions of it);
+    not the parameters (``par[i]``) and numbers, which stay inside the coefficients."""
+    return tuple(s for s, v in mapping.items() if isinstance(s, sp.Symbol) and hy.get_variables(v))
 
 
 @dataclass(frozen=True)
@@ -125,7 +141,7 @@ def contact_event(model: Model, mapping: dict, accelerations):
     f = contact_event_function(model)
     if f is None:
         return None
-    return to_heyoka(f, {**mapping, **dict(zip(ACCELERATIONS, accelerations))})
+    return to_heyoka(f, {**mapping, **dict(zip(ACCELERATIONS, accelerations))}, compact=True)
 
 
 #: The friction coefficient of the terminal event ``slips``; compiled as ``par[len(model.parameters)]``.
@@ -168,7 +184,7 @@ def compile_with_friction(model: Model, precision: Precision) -> CompiledModel:
     mapping = symbol_map(model, base.variables)
     mapping[FRICTION] = hy.par[len(model.parameters)]
     mapping.update(zip(ACCELERATIONS, [rhs for _, rhs in base.system[3:6]]))
-    slips = ("slips", to_heyoka(f, mapping), hy.event_direction.positive)
+    slips = ("slips", to_heyoka(f, mapping, compact=True), hy.event_direction.positive)
     return replace(base, events=base.events + (slips,), n_pars_system=len(model.parameters) + 1, friction=True)
 
 
@@ -176,12 +192,12 @@ def compile_with_friction(model: Model, precision: Precision) -> CompiledModel:
 def compile_model(model: Model, precision: Precision) -> CompiledModel:
     variables = tuple(hy.make_vars(*STATE_NAMES))
     mapping = symbol_map(model, variables)
-    system = tuple((mapping[v], to_heyoka(rhs, mapping)) for v, rhs in model.rhs())
+    system = tuple((mapping[v], to_heyoka(rhs, mapping, compact=True)) for v, rhs in model.rhs())
     th = mapping[theta]
     dom = model.domain
     events = [
-        (dom.below, th - to_heyoka(dom.theta_min, mapping), hy.event_direction.negative),
-        (dom.above, th - to_heyoka(dom.theta_max, mapping), hy.event_direction.positive),
+        (dom.below, th - to_heyoka(dom.theta_min, mapping, compact=True), hy.event_direction.negative),
+        (dom.above, th - to_heyoka(dom.theta_max, mapping, compact=True), hy.event_direction.positive),
     ]
     outputs = [to_heyoka(inv.expr, mapping) for inv in model.invariants]
     if model.normal_force is not None:

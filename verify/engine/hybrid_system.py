@@ -61,15 +61,15 @@ def compiled(name: str, precision: Precision) -> SlidingSystem:
     mapping = symbol_map(rolling, variables[:8])
     mapping.update({coulomb.slip_speed: variables[SLIP], coulomb.slip_direction: variables[DIRECTION],
                     coulomb.work: variables[WORK], coulomb.mu: hy.par[len(rolling.parameters)]})
-    system = tuple((v, to_heyoka(rhs, mapping)) for v, rhs in zip(variables, sliding.rhs))
+    system = tuple((v, to_heyoka(rhs, mapping, compact=True)) for v, rhs in zip(variables, sliding.rhs))
     theta = variables[0]
     dom = rolling.domain
     events = (
         ("sticks", variables[SLIP], hy.event_direction.negative),
-        (dom.below, theta - to_heyoka(dom.theta_min, mapping), hy.event_direction.negative),
-        (dom.above, theta - to_heyoka(dom.theta_max, mapping), hy.event_direction.positive),
-        ("contact_lost", to_heyoka(sliding.normal_force, mapping), hy.event_direction.negative),
-        (JAM_EVENT, to_heyoka(sliding.painleve_margin, mapping), hy.event_direction.negative),
+        (dom.below, theta - to_heyoka(dom.theta_min, mapping, compact=True), hy.event_direction.negative),
+        (dom.above, theta - to_heyoka(dom.theta_max, mapping, compact=True), hy.event_direction.positive),
+        ("contact_lost", to_heyoka(sliding.normal_force, mapping, compact=True), hy.event_direction.negative),
+        (JAM_EVENT, to_heyoka(sliding.painleve_margin, mapping, compact=True), hy.event_direction.negative),
     )
     kw = precision.integrator_kwargs()
     sliding_function = hy.cfunc([to_heyoka(e, mapping) for e in (sliding.energy, sliding.normal_force,

@@ -104,7 +104,7 @@ def for_extended(compiled, extra_states: tuple, theta_stop: bool):
 
     def build():
         mapping = symbol_map(model, compiled.variables)
-        system = list(compiled.system) + [(hy.make_vars(name), to_heyoka(rhs, mapping)) for name, rhs in extra_states]
+        system = list(compiled.system) + [(hy.make_vars(name), to_heyoka(rhs, mapping, compact=True)) for name, rhs in extra_states]
         events = compiled.t_events()
         if theta_stop:
             stop = mapping[theta] - hy.par[len(model.parameters)]

@@ -193,12 +193,12 @@ def _full(model: Model, stop: bool, friction: bool, bare: bool):
         names += ("theta_at_stop", "friction")
     mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
     alive, last = hy.par[names.index("alive")], hy.par[names.index(last_name)]
-    unscaled = [to_heyoka(r, mapping) for _, r in model.rhs()]
+    unscaled = [to_heyoka(r, mapping, compact=True) for _, r in model.rhs()]
     system = [(v, r if bare else r * alive) for v, r in zip(variables, unscaled)]
     states = STATE_NAMES
     if model.dissipation is not None:
         W = hy.make_vars("W")
-        work = to_heyoka(model.dissipation, mapping)
+        work = to_heyoka(model.dissipation, mapping, compact=True)
         system.append((W, work if bare else work * alive))
         variables.append(W)
         states = STATE_NAMES + ("W",)
@@ -222,7 +222,7 @@ def _full(model: Model, stop: bool, friction: bool, bare: bool):
                              "a friction coefficient with a model that rolls")
         # last, so the other events keep their codes
         slip_map = {**mapping, FRICTION: hy.par[names.index("friction")], **dict(zip(ACCELERATIONS, rates))}
-        events.append(("slips", to_heyoka(f, slip_map), hy.event_direction.positive))
+        events.append(("slips", to_heyoka(f, slip_map, compact=True), hy.event_direction.positive))
         record = (("theta", "theta_at_stop"),)
     safe = 0.5 * (lo + hi)
     # a frozen lane is parked mid-domain with phidot = 1, not 0: |omega_perp| terms (sqrt) have no
@@ -246,7 +246,7 @@ def _reduced(model: Model, stop: bool, friction: bool, bare: bool):
         extra = expr.free_symbols - allowed
         if extra:
             raise ValueError(f"model {model.name!r}: the reduced system depends on {sorted(map(str, extra))}")
-    unscaled = [to_heyoka(r, mapping) for r in rhs]
+    unscaled = [to_heyoka(r, mapping, compact=True) for r in rhs]
     system = [(v, r if bare else r * alive) for v, r in zip(variables, unscaled)]
     th = variables[0]
     events = [("below", th - lower, hy.event_direction.negative), ("above", th - upper, hy.event_direction.positive)]

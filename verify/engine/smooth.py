@@ -142,14 +142,14 @@ def compiled(body, precision: Precision) -> _Compiled:
     n = len(rolling.parameters)
     mapping.update({sf.slip_e1: variables[_SLIP1], sf.slip_h: variables[_SLIP2], sf.work: variables[_WORK],
                     MU: hy.par[n], sf.eps: hy.par[n + 1]})
-    system = tuple((v, to_heyoka(rhs, mapping)) for v, rhs in zip(variables, sm.rhs))
+    system = tuple((v, to_heyoka(rhs, mapping, compact=True)) for v, rhs in zip(variables, sm.rhs))
     theta = variables[0]
     dom = rolling.domain
     events = (
-        (dom.below, theta - to_heyoka(dom.theta_min, mapping), hy.event_direction.negative),
-        (dom.above, theta - to_heyoka(dom.theta_max, mapping), hy.event_direction.positive),
-        ("contact_lost", to_heyoka(sm.normal_force, mapping), hy.event_direction.negative),
-        (JAM_EVENT, to_heyoka(sm.painleve_margin, mapping), hy.event_direction.negative),
+        (dom.below, theta - to_heyoka(dom.theta_min, mapping, compact=True), hy.event_direction.negative),
+        (dom.above, theta - to_heyoka(dom.theta_max, mapping, compact=True), hy.event_direction.positive),
+        ("contact_lost", to_heyoka(sm.normal_force, mapping, compact=True), hy.event_direction.negative),
+        (JAM_EVENT, to_heyoka(sm.painleve_margin, mapping, compact=True), hy.event_direction.negative),
         (THETA_STOP, theta - hy.par[n + 2], hy.event_direction.positive),
     )
     jellett = _jellett(rolling)
