@@ -415,3 +415,73 @@ def test_rows_do_not_depend_on_how_many_batches_are_reduced_together(tmp_path, m
     monkeypatch.setattr(engine, "REDUCE_GROUP", 1)
     one_by_one = engine.run_chunk(spec, 0, 2, 4)
     assert len(together) == 8 and repr(together) == repr(one_by_one)  # repr: NaN equal to NaN, floats to the bit
+
+
+FALLS = """
+[sweep]
+name = "falls"
+model = "disk"
+t_end = 3
+samples = 31
+chunk = 4
+store = "{store}"
+
+[start]
+theta = 1.2
+
+[[axis]]
+name = "psidot"
+from = 0
+to = 2
+count = 3
+
+[record]
+quantities = ["final_theta", "final_phi", "final_psi", "final_thetadot", "final_phidot", "final_psidot",
+              "final_x", "final_y", "min_theta"]
+"""
+
+
+def test_a_stopped_runs_final_state_is_the_state_at_its_stop(tmp_path):
+    """A disk let go at theta = 1.2 with little spin loses contact at t ~ 0.065 s, before the grid's second
+    sample (0.1 s): its final_* are the state the event recorded at t_stop, equal to solve's final state
+    at its own contact_lost event (same equations, scalar integrator: a few steps, eps sqrt(N) |Phi| ~ 1e-14;
+    held to 1e-12), and a run that reaches t_end keeps its last sample (3 s: held to 1e-9 as in
+    test_sweep_rows_agree_with_solve; measured 2e-11).  With [stop] theta_below = 0.6,
+    final_theta is 0.6 (the event's root, to 1e-13).  Negative control: the samples alone hold only the
+    start before the stop (min_theta = 1.2), which is what final_theta said before (format 1 stores)."""
+    path = tmp_path / "falls.toml"
+    path.write_text(FALLS.format(store=tmp_path / "falls.sqlite"))
+    spec = load(path)
+    run_sweep(spec, threads=1, progress=False)
+    with Store(spec) as store:
+        rows = store.rows()
+    assert sorted(r["outcome"] for r in rows) == ["contact_lost", "contact_lost", "ok"]
+    for r in rows:
+        sol = solve("disk", "3", {"theta": "1.2", "psidot": repr(r["in_psidot"])}, n_eval=2)
+        assert sol.outcome == ("ok" if r["outcome"] == "ok" else "event:contact_lost")
+        assert abs(float(sol.t[-1]) - r["t_stop"]) < 1e-12
+        tol = 1e-12 if r["outcome"] != "ok" else 1e-9  # 3 s: test_sweep_rows_agree_with_solve's argument
+        for name, value in sol.final_state.items():
+            assert abs(float(value) - r[f"final_{name}"]) < tol * max(1.0, abs(float(value))), (name, r)
+        if r["outcome"] != "ok":
+            assert r["min_theta"] == 1.2 and r["final_theta"] < 0.5  # the samples saw only the start
+    stop = tmp_path / "stop.toml"
+    stop.write_text(FALLS.format(store=tmp_path / "stop.sqlite") + "\n[stop]\ntheta_below = 0.6\n")
+    spec = load(stop)
+    run_sweep(spec, threads=1, progress=False)
+    with Store(spec) as store:
+        rows = store.rows()
+    assert {r["outcome"] for r in rows} == {"theta_stop"}
+    assert all(abs(r["final_theta"] - 0.6) < 1e-13 and r["min_theta"] == 1.2 for r in rows)
+
+
+def test_a_store_of_the_former_format_is_refused(tmp_path, capsys):
+    """A format-1 store (final_* of a stopped run the last sample) is not resumed with format-2 rows."""
+    path = small(tmp_path)
+    assert main(["sweep", str(path), "--quiet"]) == 0
+    with sqlite3.connect(tmp_path / "small.sqlite") as db:
+        db.execute("UPDATE meta SET value = 'rolling-verify sweep store, format 1' WHERE key = 'format'")
+    db.close()
+    assert main(["sweep", str(path), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "format 1" in err and "format 2" in err and "delete it" in err

@@ -13,7 +13,7 @@ Nothing in the suite may assume a particular width.
 A lane system (:class:`LaneSystem`) is a model's equations as a ``taylor_adaptive_batch`` template
 with freezing terminal events (:mod:`.batch`): every right-hand side multiplied by the lane's
 ``alive`` parameter, and each per-lane parameter -- the model's, the bookkeeping records
-(``alive``, ``reason``, ``t_stop``, ``theta_at_stop``) and the lane's settings (``theta_max``,
+(``alive``, ``reason``, ``t_stop``, and in the ``full`` form the state at the stop, ``theta_at_stop``, ...) and the lane's settings (``theta_max``,
 ``theta_stop``, ``theta_lower``, ``theta_upper``, ``friction``) -- at a position found by its
 name in :class:`LaneLayout`, never by offset arithmetic.  Two forms (paper Eqs. 18, 50, 67, 87
 and the dissipative variants, as the model derives them):
@@ -49,9 +49,12 @@ from .compile import FRICTION, contact_event, slip_event_function, to_heyoka
 ENV = "VERIFY_SIMD_WIDTH"
 #: The forms of a lane system (module docstring).
 FORMS = ("full", "reduced")
+#: The ``full`` form's records of the state where a terminal event froze a lane (``theta_at_stop``, ...):
+#: what a sweep's ``final_*`` of a stopped run reads (its samples end at the last grid time before the stop).
+AT_STOP = tuple(f"{name}_at_stop" for name in STATE_NAMES)
 #: Bookkeeping records and the value a lane starts with: alive (1, or 0 once frozen), the code of the
-#: event that froze it (0: none), when, and theta there (only with a friction coefficient).
-RECORDS = {"alive": 1.0, "reason": 0.0, "t_stop": math.nan, "theta_at_stop": math.nan}
+#: event that froze it (0: none), when, and (``full`` form) the state there.
+RECORDS = {"alive": 1.0, "reason": 0.0, "t_stop": math.nan, **dict.fromkeys(AT_STOP, math.nan)}
 REDUCED_STATES = ("theta", "thetadot", "phidot", "psidot")
 
 
@@ -188,9 +191,10 @@ def _full(model: Model, stop: bool, friction: bool, bare: bool):
     variables = list(hy.make_vars(*STATE_NAMES))
     mapping = dict(zip(STATE, variables))
     last_name = "theta_stop" if stop else "theta_max"  # the one the last event reads
-    names = tuple(model.parameter_names) + ("alive", "reason", "t_stop", last_name)
-    if friction:  # theta at the event (a record, read by no expression) below the coefficient that slips reads
-        names += ("theta_at_stop", "friction")
+    # the state at an event (records, read by no expression) below the parameter the last event reads
+    names = tuple(model.parameter_names) + ("alive", "reason", "t_stop") + AT_STOP + (last_name,)
+    if friction:
+        names += ("friction",)
     mapping.update({p.symbol: hy.par[i] for i, p in enumerate(model.parameters)})
     alive, last = hy.par[names.index("alive")], hy.par[names.index(last_name)]
     unscaled = [to_heyoka(r, mapping, compact=True) for _, r in model.rhs()]
@@ -214,7 +218,7 @@ def _full(model: Model, stop: bool, friction: bool, bare: bool):
     if model.normal_force is not None:
         # the event reads the system's own accelerations so that heyoka's decomposition computes them once
         events.append(("contact_lost", contact_event(model, mapping, rates), hy.event_direction.negative))
-    record = ()
+    record = tuple(zip(STATE_NAMES, AT_STOP))
     if friction:
         f = slip_event_function(model)
         if f is None:
@@ -223,7 +227,6 @@ def _full(model: Model, stop: bool, friction: bool, bare: bool):
         # last, so the other events keep their codes
         slip_map = {**mapping, FRICTION: hy.par[names.index("friction")], **dict(zip(ACCELERATIONS, rates))}
         events.append(("slips", to_heyoka(f, slip_map, compact=True), hy.event_direction.positive))
-        record = (("theta", "theta_at_stop"),)
     safe = 0.5 * (lo + hi)
     # a frozen lane is parked mid-domain with phidot = 1, not 0: |omega_perp| terms (sqrt) have no
     # Taylor series at 0

@@ -27,8 +27,9 @@ stop needing more than its coefficient (the slack of :data:`verify.engine.failur
 
 The reductions of a chunk are computed for all its lanes at once (numpy over the lanes' samples;
 the diagnostics by one compiled call per chunk, bit for bit as one call per run), and only the
-quantities asked for.  They are what the samples hold -- extremes and final values, the drift of
-E + W, the largest mu_req -- not what they mean: the senses of the orbit and the spin
+quantities asked for.  They are what the run holds -- extremes over the samples, the final state (at
+t_end, or for a run a terminal event stopped, the state the event recorded at t_stop: the samples end
+at the last grid time before it), the drift of E + W, the largest mu_req -- not what they mean: the senses of the orbit and the spin
 (:data:`verify.sweep.spec.SENSE_KEYS`) are a study's reading of a run, :func:`verify.studies.orbits.senses`,
 which the caller passes as ``senses=`` and this module calls run by run when one of them is
 recorded (the sweep imports no study: :func:`check_readings` refuses the spec without it).
@@ -454,10 +455,11 @@ def _reduce(spec: SweepSpec, ens: Ensemble, indices, grid, samples, final_pars, 
                  / np.where(run, scale, -np.inf).max(axis=1))
         th = samples[TH, :, :g]
         q = {"max_theta": np.where(run, th, -np.inf).max(axis=1), "min_theta": np.where(run, th, np.inf).min(axis=1),
-             "final_theta": th[lane, last],
              "max_theta_deviation": np.where(run, np.abs(th - refs[:, None]), -np.inf).max(axis=1)}
+        # the state at the end: the last sample (at t_end), or for a run a terminal event stopped, the state
+        # the event recorded at t_stop (its samples end at the last grid time before)
         for i, name in enumerate(STATE_NAMES):
-            q[f"final_{name}"] = samples[i, lane, last]
+            q[f"final_{name}"] = np.where(stopped, ens.record(final_pars, f"{name}_at_stop"), samples[i, lane, last])
         if "max_friction_required_on_grid" in spec.record:  # NaN where N <= 0 (fmax skips it); the slip itself
             # is between samples: a run that slipped needed its coefficient at t_slip, more than any sample before
             need = batch.per_lane(ens.friction_required, samples[:8], model_pars, kept)[:, :, :g]

@@ -22,7 +22,9 @@ from pathlib import Path
 
 from .spec import ALWAYS, SweepSpec
 
-FORMAT = "rolling-verify sweep store, format 1"
+#: Format 2: a stopped run's ``final_*`` is the state at its stop (format 1 held the last sample before
+#: it); a store of another format is refused rather than resumed with rows of two meanings.
+FORMAT = "rolling-verify sweep store, format 2"
 
 
 class StoreError(ValueError):
@@ -77,7 +79,8 @@ class Store:
             raise StoreError(f"{self.path} is not a sweep store (tables {sorted(tables)})")
         meta = dict(self.db.execute("SELECT key, value FROM meta"))
         if meta.get("format") != FORMAT:
-            raise StoreError(f"{self.path} has format {meta.get('format')!r}; this version writes {FORMAT!r}")
+            raise StoreError(f"{self.path} has format {meta.get('format')!r}; this version writes {FORMAT!r}: "
+                             "delete it (or give another --store) and run the sweep again")
         if meta.get("spec_sha256") != self.spec.sha256:
             raise StoreError(f"{self.path} was made by a different spec (sha256 {meta.get('spec_sha256', '?')[:12]}..., "
                              f"this one {self.spec.sha256[:12]}...): delete it or give another --store")
