@@ -317,23 +317,34 @@ def cache_directory() -> Path:
 def cached_derivation(body: Body):
     """The derived model of ``body`` without its relations (which hold functions, not data), from the disk cache
     when it holds one made by the same sources; keyed by the body's exact data (:func:`fingerprint`), the
-    sources of the derivation and sympy's version.  A cache that cannot be read or written is only skipped."""
+    sources of the derivation and sympy's version (:func:`kept_on_disk`)."""
     key = hashlib.sha256((fingerprint(body) + _sources_hash() + sp.__version__).encode()).hexdigest()
-    path = cache_directory() / f"{body.name}-{key[:24]}.pickle"
+    return kept_on_disk(body.name, key, lambda: _derive(body))
+
+
+def kept_on_disk(stem: str, key: str, compute):
+    """``compute()``, kept in :func:`cache_directory` as ``STEM-KEY.pickle``: read back if there, else computed and
+    written atomically (a temporary file renamed).  A cache that cannot be read or written is only skipped.
+
+    A value computed here is returned as a later process will read it -- its pickle round trip --, not as computed:
+    sympy rebuilds some trees otherwise (the thin disk's derived model is one: ``==`` tells the two apart), and
+    the first run on an empty cache would compile other code, and so give other bits, than every run after it.
+    """
+    path = cache_directory() / f"{stem}-{key[:24]}.pickle"
     try:
         with open(path, "rb") as f:
             return pickle.load(f)
     except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError):
         pass
-    model = _derive(body)
+    data = pickle.dumps(compute())
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_bytes(pickle.dumps(model))
+        tmp.write_bytes(data)
         os.replace(tmp, path)
     except OSError:
         pass
-    return model
+    return pickle.loads(data)
 
 
 @lru_cache(maxsize=None)

@@ -41,8 +41,10 @@ N Z . u = 0).  With mu = 0 the rows are those of the smooth plane (``sliding-dis
 """
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 from functools import lru_cache
+from pathlib import Path
 
 import mpmath
 import sympy as sp
@@ -155,6 +157,20 @@ def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> Slidin
     return SlidingPhase(rhs, kinetic + g * height, kinetic, normal_on_shell, along, across, (xdot, ydot), margin)
 
 
+@lru_cache(maxsize=None)
+def _body_sliding(body_name: str) -> SlidingPhase:
+    """The sliding phase of a shipped or registered body file, derived once and kept on disk beside its rolling
+    model (:func:`models.bodies.kept_on_disk`): sympy takes minutes on a curved profile (the egg: 6.7 min under the profiler), and
+    every ``--friction`` run of it would pay them again.  Keyed by the body's exact data, this module's and the
+    rolling derivation's sources and sympy's version."""
+    from .bodies import _sources_hash, contact_vector, fingerprint, kept_on_disk, load  # lazy: models.bodies (0.15 s)
+
+    body = load(body_name)
+    here = Path(__file__).read_bytes()
+    key = hashlib.sha256(fingerprint(body).encode() + _sources_hash().encode() + here + sp.__version__.encode()).hexdigest()
+    return kept_on_disk(f"{body.name}-sliding", key, lambda: derive_sliding(*contact_vector(body)))
+
+
 def painleve_margin(rows) -> sp.Expr:
     """P = det(d rows / d accelerations) over its value at mu = 0: Painleve's margin of the sliding phase.
 
@@ -215,10 +231,7 @@ def body(name: str):
     shipped body file's ``body:NAME+coulomb`` (:mod:`models.bodies`: the same derivation with its contact vector)."""
     rolling = get_model(rolling_name(name))
     if name.startswith("body:"):
-        from .bodies import contact_vector, load  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
-
-        I1, I3, r2, r3 = contact_vector(load(rolling.name[len("body:"):]))
-        return rolling, derive_sliding(I1, I3, r2, r3), rolling.parameters + (FRICTION,)
+        return rolling, _body_sliding(rolling.name[len("body:"):]), rolling.parameters + (FRICTION,)
     if name == "disk+coulomb":
         sliding = derive_sliding(disk.k, 2 * disk.k, disk.R2, disk.R3)
     else:

@@ -177,6 +177,44 @@ def test_a_shipped_body_rolls_and_slides_with_coulomb_friction_keeping_jellett_t
         get_model("body:no-such-body")
 
 
+def test_the_first_derivation_is_the_tree_every_later_process_reads(tmp_path, monkeypatch):
+    """The thin disk's derived model comes back from its pickle as another tree (``==`` tells them apart:
+    the negative control), so the process that derives it returns what later processes read, and the
+    first run on an empty cache compiles the same code as every run after it."""
+    import pickle
+
+    from models import bodies
+
+    monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
+    body = load("disk")
+    fresh = bodies._derive(body)
+    assert pickle.loads(pickle.dumps(fresh)) != fresh  # the control: a round trip changes this tree
+    first = bodies.cached_derivation(body)  # derived, written, returned as read back
+    assert bodies.cached_derivation(body) == first  # read back by "another process"
+
+
+def test_a_bodys_sliding_phase_is_kept_on_disk(tmp_path, monkeypatch):
+    """``body:NAME+coulomb`` derives its sliding phase once (the egg's took minutes on every run) and reads it
+    back; the same phase, and the one disk+coulomb derives for the thin disk's own contact vector."""
+    from models import bodies, coulomb
+
+    monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
+    coulomb._body_sliding.cache_clear()
+    try:
+        _, first, _ = coulomb.body("body:disk+coulomb")
+        (written,) = (tmp_path / "bodies").glob("disk-sliding-*.pickle")
+        coulomb._body_sliding.cache_clear()
+        _, again, _ = coulomb.body("body:disk+coulomb")
+        assert again == first and again is not first
+        written.write_bytes(b"not a pickle")  # damaged: derived again, not trusted
+        coulomb._body_sliding.cache_clear()
+        assert coulomb.body("body:disk+coulomb")[1] == first
+        direct = coulomb.derive_sliding(*bodies.contact_vector(load("disk")))
+        assert all(sp.simplify(a - b) == 0 for a, b in zip(direct.rhs, first.rhs))
+    finally:
+        coulomb._body_sliding.cache_clear()  # leave no phase read from this temporary folder behind
+
+
 def test_a_derived_body_is_kept_on_disk_and_read_back_as_the_same_model(tmp_path, monkeypatch):
     from models import bodies
 
