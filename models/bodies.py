@@ -322,6 +322,11 @@ def cached_derivation(body: Body):
     return kept_on_disk(body.name, key, lambda: _derive(body))
 
 
+def kept_path(stem: str, key: str) -> Path:
+    """The file :func:`kept_on_disk` keeps ``STEM`` under ``KEY`` in."""
+    return cache_directory() / f"{stem}-{key[:24]}.pickle"
+
+
 def kept_on_disk(stem: str, key: str, compute):
     """``compute()``, kept in :func:`cache_directory` as ``STEM-KEY.pickle``: read back if there, else computed and
     written atomically (a temporary file renamed).  A cache that cannot be read or written is only skipped.
@@ -330,7 +335,7 @@ def kept_on_disk(stem: str, key: str, compute):
     sympy rebuilds some trees otherwise (the thin disk's derived model is one: ``==`` tells the two apart), and
     the first run on an empty cache would compile other code, and so give other bits, than every run after it.
     """
-    path = cache_directory() / f"{stem}-{key[:24]}.pickle"
+    path = kept_path(stem, key)
     try:
         with open(path, "rb") as f:
             return pickle.load(f)

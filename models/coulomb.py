@@ -160,15 +160,34 @@ def derive_sliding(I1: sp.Expr, I3: sp.Expr, r2: sp.Expr, r3: sp.Expr) -> Slidin
 @lru_cache(maxsize=None)
 def _body_sliding(body_name: str) -> SlidingPhase:
     """The sliding phase of a shipped or registered body file, derived once and kept on disk beside its rolling
-    model (:func:`models.bodies.kept_on_disk`): sympy takes minutes on a curved profile (the egg: 6.7 min under the profiler), and
+    model (:func:`models.bodies.kept_on_disk`): sympy takes minutes on a curved profile (the egg: 2.4 min), and
     every ``--friction`` run of it would pay them again.  Keyed by the body's exact data, this module's and the
     rolling derivation's sources and sympy's version."""
-    from .bodies import _sources_hash, contact_vector, fingerprint, kept_on_disk, load  # lazy: models.bodies (0.15 s)
+    from .bodies import contact_vector, kept_on_disk  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
+
+    body, stem, key = _sliding_key(body_name)
+    return kept_on_disk(stem, key, lambda: derive_sliding(*contact_vector(body)))
+
+
+def _sliding_key(body_name: str) -> tuple:
+    """(the body, the stem and the key its sliding phase is kept under)."""
+    from .bodies import _sources_hash, fingerprint, load  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
 
     body = load(body_name)
     here = Path(__file__).read_bytes()
     key = hashlib.sha256(fingerprint(body).encode() + _sources_hash().encode() + here + sp.__version__.encode()).hexdigest()
-    return kept_on_disk(f"{body.name}-sliding", key, lambda: derive_sliding(*contact_vector(body)))
+    return body, f"{body.name}-sliding", key
+
+
+def sliding_is_kept(name: str) -> bool:
+    """False if ``body:NAME+coulomb``'s sliding phase is not kept on disk yet (its first run will spend sympy's
+    time on it); True for every other Coulomb model."""
+    if not name.startswith("body:"):
+        return True
+    from .bodies import kept_path  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
+
+    _, stem, key = _sliding_key(rolling_name(name)[len("body:"):])
+    return kept_path(stem, key).exists()
 
 
 def painleve_margin(rows) -> sp.Expr:

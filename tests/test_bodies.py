@@ -201,7 +201,9 @@ def test_a_bodys_sliding_phase_is_kept_on_disk(tmp_path, monkeypatch):
     monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
     coulomb._body_sliding.cache_clear()
     try:
+        assert not coulomb.sliding_is_kept("body:disk+coulomb")  # what the command line warns of
         _, first, _ = coulomb.body("body:disk+coulomb")
+        assert coulomb.sliding_is_kept("body:disk+coulomb") and coulomb.sliding_is_kept("disk+coulomb")
         (written,) = (tmp_path / "bodies").glob("disk-sliding-*.pickle")
         coulomb._body_sliding.cache_clear()
         _, again, _ = coulomb.body("body:disk+coulomb")

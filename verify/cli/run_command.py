@@ -251,7 +251,13 @@ def run(request: RunRequest, args, session: Session, n_eval: int, label: str):
                              "(no --equations paper, --tol, --high-accuracy)")
         friction = _positive(request.friction, "--friction", "0.5 (a Coulomb coefficient > 0)")
         velocity = _velocity(request.velocity)
+        from models import coulomb  # lazy: sympy's derivations kept out of --help
+
         from ..engine import hybrid  # lazy: heyoka, sympy (1 s) kept out of --help
+
+        if isatty(sys.stderr) and not coulomb.sliding_is_kept(request.model):  # a person watches a long wait
+            print(f"deriving the sliding equations of {request.model} (sympy, once: minutes for a curved profile; "
+                  "kept in the cache for every later run)", file=sys.stderr, flush=True)
 
         try:
             return hybrid.solve(request.model, request.t_end, request.state, request.params, friction=friction,
