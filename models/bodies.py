@@ -38,6 +38,7 @@ import json
 import os
 import pickle
 import re
+import threading
 import tomllib
 from dataclasses import dataclass, replace
 from functools import lru_cache
@@ -328,24 +329,28 @@ def kept_path(stem: str, key: str) -> Path:
 
 
 def kept_on_disk(stem: str, key: str, compute):
-    """``compute()``, kept in :func:`cache_directory` as ``STEM-KEY.pickle``: read back if there, else computed and
-    written atomically (a temporary file renamed).  A cache that cannot be read or written is only skipped.
+    """``compute()``, kept in :func:`cache_directory` as ``STEM-KEY.pickle``: read back if there and whole, else
+    computed and written atomically (a temporary file renamed).  A cache that cannot be written is only skipped.
 
-    A value computed here is returned as a later process will read it -- its pickle round trip --, not as computed:
-    sympy rebuilds some trees otherwise (the thin disk's derived model is one: ``==`` tells the two apart), and
-    the first run on an empty cache would compile other code, and so give other bits, than every run after it.
+    The file holds the pickle's sha256 before the pickle: a damaged entry (a flipped byte can unpickle into another
+    expression, or raise anything from TypeError to MemoryError) is never trusted, only computed again and
+    rewritten.  A value computed here is returned as a later process will read it -- its pickle round trip --,
+    not as computed: sympy rebuilds some trees otherwise (the thin disk's derived model is one: ``==`` tells the
+    two apart), and the first run on an empty cache would compile other code, and so give other bits, than every
+    run after it.
     """
     path = kept_path(stem, key)
     try:
-        with open(path, "rb") as f:
-            return pickle.load(f)
-    except (OSError, pickle.UnpicklingError, EOFError, AttributeError, ImportError):
+        digest, data = path.read_bytes().split(b"\n", 1)
+        if digest.decode() == hashlib.sha256(data).hexdigest():
+            return pickle.loads(data)
+    except Exception:  # missing, unreadable or damaged: a miss, whatever the damage raises
         pass
     data = pickle.dumps(compute())
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_bytes(data)
+        tmp = path.with_suffix(f".{os.getpid()}.{threading.get_ident()}.tmp")
+        tmp.write_bytes(hashlib.sha256(data).hexdigest().encode() + b"\n" + data)
         os.replace(tmp, path)
     except OSError:
         pass

@@ -171,9 +171,9 @@ def _body_sliding(body_name: str) -> SlidingPhase:
 
 def _sliding_key(body_name: str) -> tuple:
     """(the body, the stem and the key its sliding phase is kept under)."""
-    from .bodies import _sources_hash, fingerprint, load  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
+    from .bodies import _sources_hash, fingerprint, resolve  # lazy: models.bodies (0.15 s) not needed by disk+coulomb
 
-    body = load(body_name)
+    body = resolve(body_name)  # as the rolling model's name resolves: never a file of that name in the working folder
     here = Path(__file__).read_bytes()
     key = hashlib.sha256(fingerprint(body).encode() + _sources_hash().encode() + here + sp.__version__.encode()).hexdigest()
     return body, f"{body.name}-sliding", key

@@ -14,7 +14,7 @@ import pytest
 import sympy as sp
 
 from models import get_model
-from models.bodies import body_from_mapping, body_of_revolution, load, model_of, shipped
+from models.bodies import body_from_mapping, body_of_revolution, load, model_of, shipped, to_toml
 from models.profiles import InvalidBody, contact
 from models.symbols import theta
 from verify.cli import main
@@ -208,11 +208,19 @@ def test_a_bodys_sliding_phase_is_kept_on_disk(tmp_path, monkeypatch):
         coulomb._body_sliding.cache_clear()
         _, again, _ = coulomb.body("body:disk+coulomb")
         assert again == first and again is not first
-        written.write_bytes(b"not a pickle")  # damaged: derived again, not trusted
-        coulomb._body_sliding.cache_clear()
-        assert coulomb.body("body:disk+coulomb")[1] == first
+        whole = written.read_bytes()
+        for damage in (b"not a pickle", whole[:-40] + bytes([whole[-40] ^ 1]) + whole[-39:]):  # garbage; one bit
+            written.write_bytes(damage)  # damaged: derived again and rewritten, never trusted
+            coulomb._body_sliding.cache_clear()
+            assert coulomb.body("body:disk+coulomb")[1] == first
+            assert written.read_bytes() == whole
         direct = coulomb.derive_sliding(*bodies.contact_vector(load("disk")))
         assert all(sp.simplify(a - b) == 0 for a, b in zip(direct.rhs, first.rhs))
+        # a body file named like the shipped one in the working folder is not what body:disk+coulomb slides as
+        monkeypatch.chdir(tmp_path)
+        (tmp_path / "disk").write_text(to_toml(load("disk")).replace('radius = "1"', 'radius = "2"'))
+        coulomb._body_sliding.cache_clear()
+        assert coulomb.body("body:disk+coulomb")[1] == first
     finally:
         coulomb._body_sliding.cache_clear()  # leave no phase read from this temporary folder behind
 

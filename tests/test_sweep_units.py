@@ -32,14 +32,17 @@ def test_every_parameter_of_every_model_has_a_unit(model):
 @pytest.mark.parametrize("model,name,unit,words", [
     ("disk", "k", "ratio", "I1/(m R^2)"), ("disk", "g", "1/s^2", "g/L in s^-2"), ("ring", "I1", "m R^2", "units of m R^2"),
     ("ring", "h", "R", "in units of R"), ("ring+air-drag", "w", "R", "in units of R"), ("disk+moffatt", "c", "1/s", "in s^-1"),
+    ("disk+contact-rate", "c", "1/s", "in s^-1"), ("ring+rolling-friction", "c", "1/s", "tau = -c (omega"),
+    ("ring+air-drag", "c", "ratio", "|omega_perp| omega_perp"),
     ("body:oblate-ellipsoid", "c", "L", None), ("body:tippe-top", "centre_height", "L", None),
     ("disk", "phidot", "1/s", None), ("disk", "tilt", "rad", None), ("disk", "x", "R", None), ("hurricane", "x", "a", None),
     ("disk", "friction", "ratio", None),
 ])
 def test_units_say_what_the_names_are(model, name, unit, words):
     """Against the models' own words where a parameter has a description (k = I1/(m R^2); g is g/L in s^-2;
-    the ring's h and w in units of R; Moffatt's c in s^-1, while a body file's c is a semi-axis, a length
-    in its scale L), and the run files' units for the state."""
+    the ring's h and w in units of R; Moffatt's c in s^-1; a couple per m R^2 (1/s^2) of -c omega_perp has c
+    in 1/s and the air drag's -c A |omega_perp| omega_perp a pure number; a body file's c is a semi-axis, a
+    length in its scale L), and the run files' units for the state."""
     assert axis_unit(model, name) == unit
     if words is not None:
         (description,) = [p.description for p in get_model(model).parameters if p.name == name]

@@ -136,6 +136,18 @@ def test_a_refused_sweep_prints_one_line_and_no_plan(tmp_path, capsys):
     assert "v:" in capsys.readouterr().err
 
 
+def test_a_sweep_refused_by_its_store_prints_one_line(tmp_path, capsys):
+    """A store made by another spec: the one line naming it, not the plan line before it (the store is checked
+    before the plan is printed)."""
+    path = tmp_path / "v.toml"
+    path.write_text(spec_text(tmp_path, axis="theta", lo=0.5, hi=1.5, count=3, start="psidot = 5"))
+    assert main(["sweep", str(path), "--quiet"]) == 0
+    path.write_text(spec_text(tmp_path, axis="theta", lo=0.5, hi=1.4, count=3, start="psidot = 5"))
+    assert main(["sweep", str(path)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "made by a different spec" in err[0], err
+
+
 def test_starts_below_the_stop_angle_are_refused(tmp_path):
     text = spec_text(tmp_path, axis="theta", lo=0.05, hi=1.2, count=3, start="psidot = 5") + "[stop]\ntheta_below = 0.1\n"
     with pytest.raises(InvalidPoint, match="not above \\[stop\\] theta_below = 0.1") as err:

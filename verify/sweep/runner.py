@@ -199,8 +199,9 @@ def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: 
     reading, ``senses`` (:func:`verify.studies.orbits.senses`; :func:`verify.sweep.engine.check_readings`),
     then the size is checked against :data:`LIMITS` -- :class:`SweepTooLarge` unless ``yes`` --, then
     every point is checked as a start -- :class:`verify.sweep.spec.InvalidPoint` naming the first bad
-    one --, and only then is the size stated on stderr (with ``progress``).  The errors are
-    :class:`verify.sweep.spec.SpecError`.
+    one --, then the store is opened (a store of another spec or format is refused) and a Dask cluster
+    reached, and only then is the size stated on stderr (with ``progress``).  The errors are
+    :class:`verify.sweep.spec.SpecError`, :class:`verify.sweep.store.StoreError` and :class:`ClusterError`.
     """
     check_readings(spec, senses)
     threads = threads or os.cpu_count() or 1
@@ -212,56 +213,63 @@ def run_sweep(spec: SweepSpec, dask: str = None, threads: int = None, progress: 
                             "Check the axes' counts, [sweep] samples and chunk; to run it anyway pass yes=True "
                             "(command line: --yes)", cost)
     validate_points(spec)
-    if progress:  # after the checks: a refused sweep gets its one line and nothing else
-        print(cost.describe(spec.name), file=sys.stderr, flush=True)
     with Store(spec, store_path) as store:
         done = store.done_chunks()
         todo = [c for c in range(spec.n_chunks) if c not in done]
-        bar = Progress(spec, len(done), len(todo), progress)
+        client, cluster = _connect(dask) if dask is not None else (None, None)
         try:
-            if dask is None:
-                where = f"local ({threads} threads)"
-                for c in todo:
-                    t1 = time.monotonic()
-                    rows = run_chunk(spec, c, threads=threads, senses=senses)
-                    store.write_chunk(c, rows, time.monotonic() - t1, f"{socket.gethostname()}:{os.getpid()}")
-                    bar.advance(len(rows))
-            else:
-                where = _run_on_dask(spec, todo, dask, store, bar, senses)
+            if progress:  # after every check (the store's, the cluster's): a refused sweep gets its one line only
+                print(cost.describe(spec.name), file=sys.stderr, flush=True)
+            bar = Progress(spec, len(done), len(todo), progress)
+            try:
+                if client is None:
+                    where = f"local ({threads} threads)"
+                    for c in todo:
+                        t1 = time.monotonic()
+                        rows = run_chunk(spec, c, threads=threads, senses=senses)
+                        store.write_chunk(c, rows, time.monotonic() - t1, f"{socket.gethostname()}:{os.getpid()}")
+                        bar.advance(len(rows))
+                else:
+                    where = _run_on_dask(spec, todo, client, cluster, store, bar, senses)
+            finally:
+                bar.close()
         finally:
-            bar.close()
+            if client is not None:
+                client.close()
+            if cluster is not None:
+                cluster.close()
         rows = store.count()
     return SweepResult(spec, str(store_path or spec.store), spec.n_chunks, len(todo), len(done), rows,
                        time.monotonic() - t0, where, cost)
 
 
-def _run_on_dask(spec: SweepSpec, todo: list, address: str, store: Store, bar: Progress, senses) -> str:
+def _connect(address: str) -> tuple:
+    """(a Dask client, the local cluster it runs on or None) for ``--dask ADDRESS``; :class:`ClusterError` if none
+    answers there."""
     try:
-        from dask.distributed import Client, LocalCluster, as_completed  # lazy: optional, --dask only, 0.4 s
+        from dask.distributed import Client, LocalCluster  # lazy: optional, --dask only, 0.4 s
     except ImportError:  # pragma: no cover - dask is a test dependency
         raise RuntimeError("--dask needs dask.distributed: pip install 'dask[distributed]'") from None
-    cluster = None
     if address == "local":
         cluster = LocalCluster(n_workers=os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                dashboard_address=None)
-        client = Client(cluster)
-    else:
-        try:
-            client = Client(address, timeout="30s")
-        except (OSError, ValueError, TimeoutError) as err:
-            raise ClusterError(f"--dask {address!r}: no Dask scheduler there ({err}); allowed: 'local' or a "
-                               "scheduler's address such as tcp://host:8786") from None
+        return Client(cluster), cluster
     try:
-        where = client.scheduler.address if cluster is None else f"local Dask cluster ({len(cluster.workers)} workers)"
-        # one thread a task: Dask runs a task on every worker thread, so the cores are already busy
-        futures = [client.submit(chunk_task, spec.text, c, 1, senses, pure=False) for c in todo]
-        for fut in as_completed(futures):
-            chunk, rows, seconds, worker = fut.result()
-            store.write_chunk(chunk, rows, seconds, worker)
-            bar.advance(len(rows))
-            fut.release()
-        return where
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        return Client(address, timeout="30s"), None
+    except (OSError, ValueError, TimeoutError) as err:
+        raise ClusterError(f"--dask {address!r}: no Dask scheduler there ({err}); allowed: 'local' or a "
+                           "scheduler's address such as tcp://host:8786") from None
+
+
+def _run_on_dask(spec: SweepSpec, todo: list, client, cluster, store: Store, bar: Progress, senses) -> str:
+    from dask.distributed import as_completed  # lazy: optional, --dask only (imported by _connect already)
+
+    where = client.scheduler.address if cluster is None else f"local Dask cluster ({len(cluster.workers)} workers)"
+    # one thread a task: Dask runs a task on every worker thread, so the cores are already busy
+    futures = [client.submit(chunk_task, spec.text, c, 1, senses, pure=False) for c in todo]
+    for fut in as_completed(futures):
+        chunk, rows, seconds, worker = fut.result()
+        store.write_chunk(chunk, rows, seconds, worker)
+        bar.advance(len(rows))
+        fut.release()
+    return where

@@ -3,8 +3,9 @@
 The state's units are a run file's (:func:`verify.series.columns.state_units`: angles in rad, rates in
 1/s, positions in the model's length unit); ``tilt`` is an angle added to theta; a parameter's unit is
 its model's (:mod:`models.catalogue`: moments of inertia in the model's inertia unit, lengths in its
-length unit, ``g`` as g/L in 1/s^2, ``k`` = I1/(m R^2) and a friction coefficient pure numbers, the
-Moffatt coefficient ``c`` of ``disk+moffatt`` in 1/s -- a body file's ``c`` is a semi-axis, a length).
+length unit, ``g`` as g/L in 1/s^2, ``k`` = I1/(m R^2) and a friction coefficient pure numbers, a
+dissipative couple's coefficient ``c`` in 1/s (the air drag's a pure number) -- a body file's ``c`` is a
+semi-axis, a length).
 A recorded quantity's unit follows from what it measures (:mod:`verify.sweep.engine`,
 :func:`verify.studies.orbits.senses`).  A name with no known unit raises ``KeyError``:
 tests/test_sweep_units.py asks for every parameter of every model and every quantity a spec can record.
@@ -28,6 +29,10 @@ _WORDS = (RATIO, "count", "sign", "turns", "yes/no")
 #: Parameters that are lengths (in the model's length unit): the ring's h and w, a body file's semi-axes
 #: and heights.
 _LENGTHS = ("h", "w", "a", "c", "half_thickness", "centre_height")
+#: The unit of a dissipative model's coefficient ``c`` where it is not 1/s: the couples are per m R^2 (in
+#: 1/s^2), so a couple -c omega_perp (rolling friction, Moffatt's, the contact rate's) has c in 1/s, and the
+#: air drag's -c A(w) |omega_perp| omega_perp a pure number.
+_DISSIPATION = {"ring+air-drag": RATIO}
 #: What the senses of an orbit record (verify.studies.orbits.senses): signs (-1, 0, 1), counts, turns.
 _COUNTS = ("windows", "windows_undecided", "points_per_nutation")
 _TURNS = ("strobe_last", "mean_last")
@@ -43,7 +48,7 @@ def parameter_unit(model: str, name: str) -> str:
     if name == "g":
         return "1/s^2"
     if name == "c" and not catalogue.name.startswith(BODY_PREFIX):
-        return "1/s"
+        return _DISSIPATION.get(catalogue.name, "1/s")
     if name in _LENGTHS:
         return catalogue.length_unit
     raise KeyError(f"no unit known for the parameter {name!r} of {model!r}")
