@@ -12,6 +12,7 @@ control: the same check flags a rewriting with a wrong trigonometric rule (sin^2
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import pickle
 import random
@@ -200,11 +201,17 @@ def test_disk_decomposition_is_shorter():
     assert sizes[1] < sizes[0], sizes
 
 
+def entry(text: str) -> str:
+    """A cache entry as compact writes it: the text's sha256, then the text."""
+    return hashlib.sha256(text.encode()).hexdigest() + "\n" + text
+
+
 def test_compact_forms_are_kept_on_disk_and_a_damaged_entry_is_computed_again(tmp_path, monkeypatch):
     """A compact form is written under $HEYOKA_CACHE_DIR/compact and read back by a later process (the
     memory cache cleared stands for one); garbage, a truncated entry, or an expression in symbols the
-    input does not have, is computed again and rewritten.  Control that the reading is real: a valid
-    entry planted under the key is what compact returns."""
+    input does not have, is computed again and rewritten -- also a damaged digit that still parses as an
+    expression in the same symbols, which only the entry's sha256 tells apart, and an entry without its digest.
+    Control that the reading is real: a valid entry planted under the key is what compact returns."""
     monkeypatch.setenv("HEYOKA_CACHE_DIR", str(tmp_path))
     rhs = sp.sympify(get_model("disk").accelerations[0])
     gens = polynomial_symbols(rhs, VARIABLES)
@@ -215,13 +222,16 @@ def test_compact_forms_are_kept_on_disk_and_a_damaged_entry_is_computed_again(tm
     try:
         compact_module.forget()
         assert compact_module.tree_text(compact(rhs, VARIABLES)) == fresh
-        assert path.read_text() == fresh and not list(path.parent.glob("*.tmp"))  # whole, no temporary left
-        for damage in ("not an expression", fresh[:40], compact_module.tree_text(sp.Symbol("stranger") * rhs)):
+        assert path.read_text() == entry(fresh) and not list(path.parent.glob("*.tmp"))  # whole, no temporary left
+        altered = fresh.replace("Integer(2)", "Integer(3)", 1)  # a damaged digit: still an expression, same symbols
+        assert altered != fresh
+        for damage in ("not an expression", fresh[:40], entry(fresh)[:80], entry(fresh).split("\n")[0] + "\n" + altered,
+                       entry(compact_module.tree_text(sp.Symbol("stranger") * rhs)), fresh):
             path.write_text(damage)
             compact_module.forget()
             assert compact_module.tree_text(compact(rhs, VARIABLES)) == fresh
-            assert path.read_text() == fresh  # rewritten
-        path.write_text(compact_module.tree_text(sp.expand(rhs)))  # in the input's symbols: trusted, so read
+            assert path.read_text() == entry(fresh)  # rewritten
+        path.write_text(entry(compact_module.tree_text(sp.expand(rhs))))  # whole, in the input's symbols: read
         compact_module.forget()
         assert compact(rhs, VARIABLES) == sp.expand(rhs) != form
     finally:

@@ -66,6 +66,8 @@ import flint
 import sympy as sp
 from sympy.external.gmpy import GROUND_TYPES
 
+from ..provenance import write_atomic
+
 
 def polynomial_symbols(expr: sp.Expr, candidates) -> tuple:
     """The ``candidates`` that occur in ``expr`` only polynomially (never inside a function or a
@@ -149,14 +151,16 @@ def from_tree_text(text: str) -> sp.Basic:
 def _compact(expr: sp.Expr, gens: tuple) -> sp.Expr:
     """The compact form, from memory, else from the disk cache, else computed (:func:`compacted`) and written.
 
-    An entry is taken only if it is an expression in the input's symbols whose text it gives back (the
-    same tree); a computed form is kept only if its text gives back an equal tree (``==`` on sympy
-    trees compares node for node), else it is returned and computed again by the next process.
+    An entry is its text's sha256 on the first line, then the text.  It is taken only if the digest matches
+    (a damaged digit would still parse, as another expression in the same symbols) and it is an expression in
+    the input's symbols whose text it gives back (the same tree); a computed form is kept only if its text
+    gives back an equal tree (``==`` on sympy trees compares node for node), else it is returned and computed
+    again by the next process.  Written by :func:`verify.provenance.write_atomic`.
     """
     path = cache_path(expr, gens)
     try:
-        text = path.read_text(encoding="utf-8")
-        kept = from_tree_text(text)
+        digest, text = path.read_text(encoding="utf-8").split("\n", 1)
+        kept = from_tree_text(text) if digest == hashlib.sha256(text.encode()).hexdigest() else None
     except Exception:  # any unreadable entry is only a miss: missing, truncated or garbage (eval raises
         kept = None  # SyntaxError, NameError, TypeError, ... depending on the damage)
     if isinstance(kept, sp.Expr) and kept.free_symbols <= expr.free_symbols and tree_text(kept) == text:
@@ -166,10 +170,7 @@ def _compact(expr: sp.Expr, gens: tuple) -> sp.Expr:
     try:
         if from_tree_text(text) != result:
             return result
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
+        write_atomic(path, hashlib.sha256(text.encode()).hexdigest() + "\n" + text)
     except OSError:
         pass
     return result
