@@ -102,7 +102,6 @@ def test_compact_forms_are_identities(name, equations):
         expr = sp.sympify(expr)
         new = compact(expr, VARIABLES)
         assert not differs(expr, new, seed=i), f"{name} ({equations}) expression {i}: {expr} != {new}"
-        assert sp.count_ops(new) <= sp.count_ops(expr), f"{name}: the compact form of expression {i} is longer"
 
 
 def test_coulomb_and_smooth_systems_are_identities():
@@ -183,12 +182,16 @@ def test_compact_is_deterministic_and_leaves_other_forms():
     assert FRICTION in compact(slip, VARIABLES).free_symbols
 
 
-def test_disk_decomposition_is_shorter():
-    """heyoka's decomposition of the disk's system and events: the compact form has fewer terms than
-    the uncompacted one (the number itself is reported by the benchmark)."""
+@pytest.mark.parametrize("name", ALL_NAMES)
+def test_the_decomposition_is_never_longer(name):
+    """What the rewriting is for, measured by another route than its own criterion (sympy's count_ops, which
+    compacted() keeps from growing by construction): heyoka's Taylor decomposition of each model's system,
+    whose every term costs its Taylor coefficients on every step.  The compact form's is never longer, and
+    strictly shorter for the paper's three bodies (measured: disk 54 -> 44, ring 110 -> 85, hurricane
+    116 -> 80; sliding-disk 30 = 30)."""
     from verify.engine.compile import symbol_map
 
-    model = get_model("disk")
+    model = get_model(name)
     variables = tuple(hy.make_vars(*STATE_NAMES))
     mapping = symbol_map(model, variables)
     exprs = [rhs for _, rhs in model.rhs()]
@@ -196,9 +199,11 @@ def test_disk_decomposition_is_shorter():
     for convert in (lambda e: hy.from_sympy(sp.sympify(e), mapping),
                     lambda e: hy.from_sympy(compact(sp.sympify(e), VARIABLES), mapping)):
         system = [(v, convert(e)) for v, e in zip(variables, exprs)]
-        ta = hy.taylor_adaptive(system, [0.5] * 8, pars=[0.25, 980.0], compact_mode=True)
+        ta = hy.taylor_adaptive(system, [0.5] * 8, pars=[0.3] * len(model.parameters), compact_mode=True)
         sizes.append(len(ta.decomposition) - 2 * len(variables))
-    assert sizes[1] < sizes[0], sizes
+    assert sizes[1] <= sizes[0], sizes
+    if name in ("disk", "ring", "hurricane"):
+        assert sizes[1] < sizes[0], sizes
 
 
 def entry(text: str) -> str:
