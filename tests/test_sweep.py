@@ -485,3 +485,15 @@ def test_a_store_of_the_former_format_is_refused(tmp_path, capsys):
     assert main(["sweep", str(path), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert "format 1" in err and "format 2" in err and "delete it" in err
+
+
+def test_a_shipped_spec_is_found_by_name_from_any_folder(tmp_path, monkeypatch):
+    """From a folder without the file, ``sweep disk-diameter-spin`` (or ``.toml``) is the shipped spec; a file of
+    that name in the working folder is the user's own; an unknown name lists the shipped ones."""
+    monkeypatch.chdir(tmp_path)
+    shipped = load(SPECS / "disk-diameter-spin.toml")
+    assert load("disk-diameter-spin").sha256 == load("disk-diameter-spin.toml").sha256 == shipped.sha256
+    (tmp_path / "disk-diameter-spin.toml").write_text(small(tmp_path).read_text())
+    assert load("disk-diameter-spin.toml").name == "small"
+    with pytest.raises(SpecError, match="shipped spec by name: disk-diameter-spin, "):
+        load("no-such-spec")

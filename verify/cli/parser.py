@@ -116,7 +116,7 @@ def parser() -> argparse.ArgumentParser:
     sc.set_defaults(run=cmd_score)
 
     sw = sub.add_parser("sweep", help="run (or resume) a parameter sweep described by a TOML file")
-    sw.add_argument("spec", help="the sweep's TOML file (e.g. verify/sweep/specs/disk-diameter-spin.toml)")
+    sw.add_argument("spec", help="the sweep's TOML file, or a shipped spec by name (e.g. disk-diameter-spin)")
     sw.add_argument("--dask", default=None, metavar="ADDRESS",
                     help="run the chunks on a Dask cluster (tcp://host:port, or 'local' for one on this machine)")
     sw.add_argument("--plot", action="store_true", help="draw the map(s) from the store instead of running")

@@ -195,13 +195,26 @@ class SweepSpec:
         return range(chunk * self.chunk, min((chunk + 1) * self.chunk, self.n_points))
 
 
+#: The shipped specs' folder (``verify.sweep.SPECS``).
+SHIPPED = Path(__file__).resolve().parent / "specs"
+
+
+def shipped() -> tuple:
+    """The names of the shipped specs (``disk-diameter-spin``, ...)."""
+    return tuple(sorted(p.stem for p in SHIPPED.glob("*.toml")))
+
+
 def load(path, store: Optional[str] = None) -> SweepSpec:
-    """Read and validate a spec file; ``store`` overrides its store path."""
+    """Read and validate a spec file, or a shipped spec by its name (``disk-diameter-spin``, with or without
+    ``.toml``) where no such file is in the working folder; ``store`` overrides its store path."""
     path = Path(path)
+    if not path.exists() and path.parent == Path(".") and path.with_suffix(".toml").stem in shipped():
+        path = SHIPPED / f"{path.with_suffix('.toml').stem}.toml"
     try:
         text = path.read_text()
     except FileNotFoundError:
-        raise SpecError(f"no sweep spec {path}") from None
+        raise SpecError(f"no sweep spec {path}; allowed: a TOML file, or a shipped spec by name: "
+                        f"{', '.join(shipped())}") from None
     except OSError as err:
         raise SpecError(f"cannot read the sweep spec {path}: {err}") from None
     return parse(text, str(path), store)
